@@ -1,0 +1,23 @@
+#pragma once
+// The simulation box shared by DEM and fluid: an axis-aligned box with optional periodicity.
+#include <array>
+
+#include "core/params.hpp"
+#include "core/vec3.hpp"
+
+namespace gf {
+
+struct Domain {
+  Vec3 min;
+  Vec3 max;
+  std::array<bool, 3> periodic{false, false, false};
+
+  Vec3 size() const { return max - min; }
+  bool contains(const Vec3& p) const {
+    return p.x >= min.x && p.x <= max.x && p.y >= min.y && p.y <= max.y && p.z >= min.z && p.z <= max.z;
+  }
+  /// Reads section 'domain' of a case (min, max, periodic).
+  static Domain read(Params& root);
+};
+
+}  // namespace gf

@@ -1,0 +1,559 @@
+#include "core/params.hpp"
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace gf {
+
+// ---------------------------------------------------------------- Range
+
+bool Range::contains(double v) const {
+  if (std::isnan(v)) return false;
+  const bool lowOk = minInclusive ? v >= min : v > min;
+  const bool highOk = maxInclusive ? v <= max : v < max;
+  return lowOk && highOk;
+}
+
+bool Range::unrestricted() const { return std::isinf(min) && std::isinf(max); }
+
+std::string Range::describe() const {
+  const bool hasMin = !std::isinf(min), hasMax = !std::isinf(max);
+  if (!hasMin && !hasMax) return "any";
+  if (hasMin && hasMax)
+    return fmt::format("in {}{:g}, {:g}{}", minInclusive ? "[" : "(", min, max, maxInclusive ? "]" : ")");
+  if (hasMin) return fmt::format("{} {:g}", minInclusive ? ">=" : ">", min);
+  return fmt::format("{} {:g}", maxInclusive ? "<=" : "<", max);
+}
+
+// ---------------------------------------------------------------- suggestions
+
+std::size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t substitution = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, substitution});
+    }
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string closestMatch(std::string_view word, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t bestDistance = std::max<std::size_t>(2, word.size() / 3) + 1;
+  for (const auto& c : candidates) {
+    const std::size_t d = editDistance(word, c);
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+namespace {
+
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + names[i];
+  return out;
+}
+
+FileLocation locationOf(const std::string& file, const YAML::Node& node) {
+  if (!node.IsDefined()) return {file, 0, 0};
+  const YAML::Mark m = node.Mark();
+  if (m.line < 0) return {file, 0, 0};
+  return {file, m.line + 1, m.column + 1};
+}
+
+/// How a YAML node looks to a user, for "found ..." texts.
+std::string describeNode(const YAML::Node& node) {
+  if (!node.IsDefined() || node.IsNull()) return "nothing";
+  if (node.IsSequence()) return fmt::format("a list of {} item(s)", node.size());
+  if (node.IsMap()) return "a map";
+  return fmt::format("'{}'", node.Scalar());
+}
+
+std::string formatReal(double v) { return fmt::format("{:g}", v); }
+std::string formatVec(const Vec3& v) { return fmt::format("[{:g}, {:g}, {:g}]", v.x, v.y, v.z); }
+
+}  // namespace
+
+// ---------------------------------------------------------------- shared state
+
+struct Params::Section {
+  YAML::Node node;     // the map (undefined for an absent section)
+  std::string prefix;  // dotted path of this section ("" for the root)
+  std::set<std::string> queried;
+};
+
+struct Params::Shared {
+  std::string file;
+  bool documenting = false;
+  std::vector<std::shared_ptr<Section>> sections;  // every map visited, in order
+  std::vector<ResolvedKey> resolved;
+  std::vector<KeyDoc> docs;
+  std::set<std::string> documentedPaths;
+};
+
+Params::Params(std::shared_ptr<Shared> shared, std::shared_ptr<Section> section)
+    : shared_(std::move(shared)), section_(std::move(section)) {
+  shared_->sections.push_back(section_);
+}
+Params::~Params() = default;
+Params::Params(const Params&) = default;
+Params& Params::operator=(const Params&) = default;
+Params::Params(Params&&) noexcept = default;
+Params& Params::operator=(Params&&) noexcept = default;
+
+Params Params::loadString(const std::string& yamlText, const std::string& displayName) {
+  auto shared = std::make_shared<Shared>();
+  shared->file = displayName;
+  YAML::Node root;
+  try {
+    root = YAML::Load(yamlText);
+  } catch (const YAML::ParserException& e) {
+    throw CaseError({displayName, e.mark.line + 1, e.mark.column + 1}, "(file)",
+                    fmt::format("text that is not valid YAML ({})", e.msg), "a YAML map of case sections");
+  }
+  if (!root.IsDefined() || root.IsNull())
+    throw CaseError({displayName, 0, 0}, "(file)", "an empty file", "a YAML map of case sections");
+  if (!root.IsMap())
+    throw CaseError(locationOf(displayName, root), "(file)", describeNode(root), "a YAML map of case sections");
+  auto section = std::make_shared<Section>();
+  section->node = root;
+  return Params(shared, section);
+}
+
+Params Params::loadFile(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec))
+    throw CaseError({path, 0, 0}, "(file)", "no such file", "a readable YAML case file");
+  if (fs::is_directory(path, ec))
+    throw CaseError({path, 0, 0}, "(file)", "a directory", "a readable YAML case file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CaseError({path, 0, 0}, "(file)", "a file that cannot be opened", "a readable YAML case file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return loadString(buffer.str(), path);
+}
+
+Params Params::documentation() {
+  auto shared = std::make_shared<Shared>();
+  shared->file = "(documentation)";
+  shared->documenting = true;
+  return Params(shared, std::make_shared<Section>());
+}
+
+// ---------------------------------------------------------------- helpers
+
+bool Params::documenting() const { return shared_->documenting; }
+const std::string& Params::fileName() const { return shared_->file; }
+
+std::string Params::path(std::string_view key) const {
+  if (section_->prefix.empty()) return std::string(key);
+  if (key.empty()) return section_->prefix;
+  return section_->prefix + "." + std::string(key);
+}
+
+const YAML::Node* Params::find(std::string_view key) const {
+  static thread_local YAML::Node found;
+  const YAML::Node& map = section_->node;
+  if (!map.IsDefined() || !map.IsMap()) return nullptr;
+  for (auto it = map.begin(); it != map.end(); ++it) {
+    if (it->first.Scalar() == key) {
+      found.reset(it->second);
+      return &found;
+    }
+  }
+  return nullptr;
+}
+
+bool Params::has(std::string_view key) const {
+  const YAML::Node* n = find(key);
+  return n != nullptr && !n->IsNull();
+}
+
+FileLocation Params::location(std::string_view key) const {
+  if (const YAML::Node* n = find(key)) {
+    FileLocation loc = locationOf(shared_->file, *n);
+    if (loc.line > 0) return loc;
+  }
+  return locationOf(shared_->file, section_->node);
+}
+
+void Params::fail(std::string_view key, const std::string& found, const std::string& expected) const {
+  throw CaseError(location(key), path(key), found, expected);
+}
+
+void Params::markQueried(std::string_view key) const { section_->queried.insert(std::string(key)); }
+
+void Params::document(const Key& k, std::string type, std::string defaultValue, std::string allowed) const {
+  // In documentation mode, list items are all documented under "name[]".
+  const std::string p = path(k.name);
+  if (!shared_->documentedPaths.insert(p).second) return;
+  shared_->docs.push_back({p, std::move(type), std::move(defaultValue), std::string(k.unit), std::move(allowed),
+                           std::string(k.help)});
+}
+
+void Params::record(const Key& k, std::string value, bool fromDefault) const {
+  shared_->resolved.push_back({path(k.name), std::move(value), std::string(k.unit), fromDefault});
+}
+
+// ---------------------------------------------------------------- scalars
+
+namespace {
+
+/// Reads one node as a double, with a precise error on failure.
+double parseReal(const Params& p, const Key& k, const YAML::Node& n) {
+  if (!n.IsScalar()) p.fail(k.name, describeNode(n), fmt::format("a number [{}]", k.unit));
+  double v = 0.0;
+  try {
+    v = n.as<double>();
+  } catch (const YAML::Exception&) {
+    p.fail(k.name, describeNode(n), fmt::format("a number [{}]", k.unit));
+  }
+  if (!std::isfinite(v)) p.fail(k.name, describeNode(n), fmt::format("a finite number [{}]", k.unit));
+  if (!k.range.contains(v))
+    p.fail(k.name, formatReal(v), fmt::format("a value {} [{}]", k.range.describe(), k.unit));
+  return v;
+}
+
+double placeholderFor(const Range& r) {
+  if (r.contains(1.0)) return 1.0;
+  if (r.contains(r.min)) return r.min;
+  if (!std::isinf(r.min) && !std::isinf(r.max)) return 0.5 * (r.min + r.max);
+  if (!std::isinf(r.min)) return r.min + 1.0;
+  return r.max - 1.0;
+}
+
+}  // namespace
+
+double Params::real(const Key& k, double defaultValue) {
+  markQueried(k.name);
+  if (documenting()) {
+    document(k, "real", formatReal(defaultValue), k.range.describe());
+    return defaultValue;
+  }
+  const YAML::Node* n = find(k.name);
+  if (n == nullptr || n->IsNull()) {
+    record(k, formatReal(defaultValue), true);
+    return defaultValue;
+  }
+  const double v = parseReal(*this, k, *n);
+  record(k, formatReal(v), false);
+  return v;
+}
+
+double Params::real(const Key& k) {
+  markQueried(k.name);
+  if (documenting()) {
+    document(k, "real", "", k.range.describe());
+    return placeholderFor(k.range);
+  }
+  const YAML::Node* n = find(k.name);
+  if (n == nullptr || n->IsNull()) fail(k.name, "nothing", fmt::format("a number [{}] (this key is required)", k.unit));
+  const double v = parseReal(*this, k, *n);
+  record(k, formatReal(v), false);
+  return v;
+}
+
+namespace {
+long long parseInteger(const Params& p, const Key& k, const YAML::Node& n) {
+  long long v = 0;
+  if (!n.IsScalar()) p.fail(k.name, describeNode(n), "an integer");
+  try {
+    v = n.as<long long>();
+  } catch (const YAML::Exception&) {
+    p.fail(k.name, describeNode(n), "an integer");
+  }
+  if (!k.range.contains(static_cast<double>(v)))
+    p.fail(k.name, std::to_string(v), fmt::format("an integer {}", k.range.describe()));
+  return v;
+}
+}  // namespace
+
+long long Params::integer(const Key& k, long long defaultValue) {
+  markQueried(k.name);
+  if (documenting()) {
+    document(k, "integer", std::to_string(defaultValue), k.range.describe());
+    return defaultValue;
+  }
+  const YAML::Node* n = find(k.name);
+  if (n == nullptr || n->IsNull()) {
+    record(k, std::to_string(defaultValue), true);
+    return defaultValue;
+  }
+  const long long v = parseInteger(*this, k, *n);
+  record(k, std::to_string(v), false);
+  return v;
+}
+
+long long Params::integer(const Key& k) {
+  markQueried(k.name);
+  if (documenting()) {
+    document(k, "integer", "", k.range.describe());
+    return static_cast<long long>(placeholderFor(k.range));
+  }
+  const YAML::Node* n = find(k.name);
+  if (n == nullptr || n->IsNull()) fail(k.name, "nothing", "an integer (this key is required)");
+  const long long v = parseInteger(*this, k, *n);
+  record(k, std::to_string(v), false);
+  return v;
+}
+
+bool Params::boolean(const Key& k, bool defaultValue) {
+  markQueried(k.name);
+  if (documenting()) {
+    document(k, "boolean", defaultValue ? "true" : "false", "true, false");
+    return defaultValue;
+  }
+  const YAML::Node* n = find(k.name);
+  if (n == nullptr || n->IsNull()) {
+    record(k, defaultValue ? "true" : "false", true);
+    return defaultValue;
+  }
+  bool v = false;
+  try {
+    if (!n->IsScalar()) throw YAML::Exception(YAML::Mark::null_mark(), "not scalar");
+    v = n->as<bool>();
+  } catch (const YAML::Exception&) {
+    fail(k.name, describeNode(*n), "true or false");
+  }
+  record(k, v ? "true" : "false", false);
+  return v;
+}
+
+std::string Params::text(const Key& k, const std::string& defaultValue) {
+  markQueried(k.name);
+  if (documenting()) {
+    document(k, "text", defaultValue.empty() ? "\"\"" : defaultValue, "any text");
+    return defaultValue;
+  }
+  const YAML::Node* n = find(k.name);
+  if (n == nullptr || n->IsNull()) {
+    record(k, defaultValue, true);
+    return defaultValue;
+  }
+  if (!n->IsScalar()) fail(k.name, describeNode(*n), "a text");
+  record(k, n->Scalar(), false);
+  return n->Scalar();
+}
+
+std::string Params::text(const Key& k) {
+  markQueried(k.name);
+  if (documenting()) {
+    document(k, "text", "", "any text");
+    return "placeholder";
+  }
+  const YAML::Node* n = find(k.name);
+  if (n == nullptr || n->IsNull()) fail(k.name, "nothing", "a text (this key is required)");
+  if (!n->IsScalar() || n->Scalar().empty()) fail(k.name, describeNode(*n), "a non-empty text");
+  record(k, n->Scalar(), false);
+  return n->Scalar();
+}
+
+namespace {
+Vec3 parseVec3(const Params& p, const Key& k, const YAML::Node& n) {
+  const std::string expected = fmt::format("a list of 3 numbers [x, y, z] [{}]", k.unit);
+  if (!n.IsSequence() || n.size() != 3) p.fail(k.name, describeNode(n), expected);
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) {
+    try {
+      v[i] = n[i].as<double>();
+    } catch (const YAML::Exception&) {
+      p.fail(k.name, fmt::format("component {} = {}", i, describeNode(n[i])), expected);
+    }
+    if (!std::isfinite(v[i]) || !k.range.contains(v[i]))
+      p.fail(k.name, fmt::format("component {} = {:g}", i, v[i]),
+             fmt::format("components {} [{}]", k.range.describe(), k.unit));
+  }
+  return v;
+}
+}  // namespace
+
+Vec3 Params::vec3(const Key& k, Vec3 defaultValue) {
+  markQueried(k.name);
+  if (documenting()) {
+    document(k, "vector3", formatVec(defaultValue), k.range.describe());
+    return defaultValue;
+  }
+  const YAML::Node* n = find(k.name);
+  if (n == nullptr || n->IsNull()) {
+    record(k, formatVec(defaultValue), true);
+    return defaultValue;
+  }
+  const Vec3 v = parseVec3(*this, k, *n);
+  record(k, formatVec(v), false);
+  return v;
+}
+
+Vec3 Params::vec3(const Key& k) {
+  markQueried(k.name);
+  if (documenting()) {
+    document(k, "vector3", "", k.range.describe());
+    const double c = placeholderFor(k.range);
+    return {c, c, c};
+  }
+  const YAML::Node* n = find(k.name);
+  if (n == nullptr || n->IsNull())
+    fail(k.name, "nothing", fmt::format("a list of 3 numbers [x, y, z] [{}] (this key is required)", k.unit));
+  const Vec3 v = parseVec3(*this, k, *n);
+  record(k, formatVec(v), false);
+  return v;
+}
+
+std::vector<double> Params::reals(const Key& k, const std::vector<double>& defaultValue) {
+  markQueried(k.name);
+  auto format = [](const std::vector<double>& values) {
+    std::string s = "[";
+    for (std::size_t i = 0; i < values.size(); ++i) s += (i ? ", " : "") + formatReal(values[i]);
+    return s + "]";
+  };
+  if (documenting()) {
+    document(k, "list of reals", format(defaultValue), k.range.describe());
+    return defaultValue;
+  }
+  const YAML::Node* n = find(k.name);
+  if (n == nullptr || n->IsNull()) {
+    record(k, format(defaultValue), true);
+    return defaultValue;
+  }
+  if (!n->IsSequence()) fail(k.name, describeNode(*n), fmt::format("a list of numbers [{}]", k.unit));
+  std::vector<double> out;
+  for (std::size_t i = 0; i < n->size(); ++i) {
+    double v = 0;
+    try {
+      v = (*n)[i].as<double>();
+    } catch (const YAML::Exception&) {
+      fail(k.name, fmt::format("item {} = {}", i, describeNode((*n)[i])), fmt::format("a list of numbers [{}]", k.unit));
+    }
+    if (!std::isfinite(v) || !k.range.contains(v))
+      fail(k.name, fmt::format("item {} = {:g}", i, v), fmt::format("values {} [{}]", k.range.describe(), k.unit));
+    out.push_back(v);
+  }
+  record(k, format(out), false);
+  return out;
+}
+
+std::string Params::choice(const Key& k, const std::vector<std::string>& allowed, const std::string& defaultValue) {
+  markQueried(k.name);
+  if (documenting()) {
+    document(k, "choice", defaultValue, joinNames(allowed));
+    return defaultValue;
+  }
+  const YAML::Node* n = find(k.name);
+  if (n == nullptr || n->IsNull()) {
+    record(k, defaultValue, true);
+    return defaultValue;
+  }
+  if (!n->IsScalar()) fail(k.name, describeNode(*n), "one of: " + joinNames(allowed));
+  const std::string v = n->Scalar();
+  if (std::find(allowed.begin(), allowed.end(), v) == allowed.end()) {
+    const std::string suggestion = closestMatch(v, allowed);
+    fail(k.name, fmt::format("'{}'{}", v, suggestion.empty() ? "" : fmt::format(" (did you mean '{}'?)", suggestion)),
+         "one of: " + joinNames(allowed));
+  }
+  record(k, v, false);
+  return v;
+}
+
+std::string Params::choice(const Key& k, const std::vector<std::string>& allowed) {
+  markQueried(k.name);
+  if (documenting()) {
+    document(k, "choice", "", joinNames(allowed));
+    return allowed.empty() ? std::string() : allowed.front();
+  }
+  const YAML::Node* n = find(k.name);
+  if (n == nullptr || n->IsNull()) fail(k.name, "nothing", "one of: " + joinNames(allowed) + " (this key is required)");
+  return choice(k, allowed, "");
+}
+
+// ---------------------------------------------------------------- nesting
+
+Params Params::childParams(const Key& k, const YAML::Node& node, const std::string& childPrefix, bool isList) {
+  auto child = std::make_shared<Section>();
+  child->node = node;
+  child->prefix = childPrefix;
+  (void)k;
+  (void)isList;
+  return Params(shared_, child);
+}
+
+Params Params::section(const Key& k) {
+  markQueried(k.name);
+  if (documenting()) {
+    document(k, "section", "", "map");
+    return childParams(k, YAML::Node(), path(k.name), false);
+  }
+  const YAML::Node* n = find(k.name);
+  if (n == nullptr || n->IsNull()) return childParams(k, YAML::Node(YAML::NodeType::Undefined), path(k.name), false);
+  if (!n->IsMap()) fail(k.name, describeNode(*n), "a map of keys (section '" + std::string(k.name) + "')");
+  return childParams(k, *n, path(k.name), false);
+}
+
+Params Params::requiredSection(const Key& k) {
+  if (!documenting() && !has(k.name)) {
+    markQueried(k.name);
+    fail(k.name, "nothing", "a map of keys (this section is required)");
+  }
+  return section(k);
+}
+
+std::vector<Params> Params::list(const Key& k) {
+  markQueried(k.name);
+  if (documenting()) {
+    document(k, "list", "[]", "list of maps");
+    return {childParams(k, YAML::Node(), path(k.name) + "[]", true)};
+  }
+  const YAML::Node* n = find(k.name);
+  std::vector<Params> out;
+  if (n == nullptr || n->IsNull()) return out;
+  if (!n->IsSequence()) fail(k.name, describeNode(*n), "a list of maps (each item starting with '- ')");
+  const YAML::Node seq = *n;
+  for (std::size_t i = 0; i < seq.size(); ++i) {
+    const YAML::Node item = seq[i];
+    const std::string itemPath = fmt::format("{}[{}]", path(k.name), i);
+    if (!item.IsMap()) throw CaseError(locationOf(shared_->file, item), itemPath, describeNode(item), "a map of keys");
+    out.push_back(childParams(k, item, itemPath, true));
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- checks and reports
+
+void Params::checkUnknownKeys() const {
+  if (documenting()) return;
+  for (const auto& section : shared_->sections) {
+    const YAML::Node& map = section->node;
+    if (!map.IsDefined() || !map.IsMap()) continue;
+    for (auto it = map.begin(); it != map.end(); ++it) {
+      const std::string key = it->first.Scalar();
+      if (section->queried.count(key)) continue;
+      std::vector<std::string> valid(section->queried.begin(), section->queried.end());
+      const std::string suggestion = closestMatch(key, valid);
+      const std::string where = section->prefix.empty() ? key : section->prefix + "." + key;
+      throw CaseError(locationOf(shared_->file, it->first), where,
+                      fmt::format("an unknown key '{}'{}", key,
+                                  suggestion.empty() ? "" : fmt::format(" (did you mean '{}'?)", suggestion)),
+                      "one of: " + joinNames(valid));
+    }
+  }
+}
+
+std::vector<ResolvedKey> Params::resolved() const { return shared_->resolved; }
+std::vector<KeyDoc> Params::documentedKeys() const { return shared_->docs; }
+
+}  // namespace gf

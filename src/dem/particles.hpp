@@ -1,0 +1,37 @@
+#pragma once
+// Particle storage: structure of arrays (one contiguous array per quantity), so that kernels
+// stream through memory, vectorise, and port to a GPU unchanged.
+#include <cstdint>
+#include <vector>
+
+#include "core/serialize.hpp"
+#include "core/vec3.hpp"
+
+namespace gf::dem {
+
+struct ParticleSet {
+  std::vector<std::int64_t> id;       // unique, stable across reordering and restarts
+  std::vector<std::int32_t> type;     // material index
+  std::vector<double> radius;         // m
+  std::vector<double> mass;           // kg
+  std::vector<Vec3> position;         // m
+  std::vector<Vec3> velocity;         // m/s
+  std::vector<Vec3> angularVelocity;  // rad/s
+  std::vector<Vec3> force;            // N, contact + body forces of the current step
+  std::vector<Vec3> torque;           // N m
+  std::vector<Vec3> externalForce;    // N, set by the coupling (fluid forces), held over DEM substeps
+  std::vector<Vec3> externalTorque;   // N m
+
+  std::size_t size() const { return id.size(); }
+
+  /// Appends one particle at rest; returns its index.
+  std::size_t add(std::int64_t newId, std::int32_t materialType, double r, double density, const Vec3& x,
+                  const Vec3& v = {}, const Vec3& omega = {});
+  /// Moment of inertia of a solid sphere, I = 2/5 m r^2.
+  double inertia(std::size_t i) const { return 0.4 * mass[i] * radius[i] * radius[i]; }
+
+  void save(BinaryWriter& out) const;
+  void load(BinaryReader& in);
+};
+
+}  // namespace gf::dem
