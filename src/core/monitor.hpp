@@ -1,0 +1,44 @@
+#pragma once
+// Monitors: quantities sampled during a run and written as CSV columns (one file per monitor).
+// A monitor is one file implementing Monitor and registered by name:
+//   GF_REGISTER_MODEL(gf::Monitor, KineticEnergyMonitor, "kinetic_energy", "...");
+// Its constructor reads its own keys from the case's monitor entry.
+#include <string>
+#include <vector>
+
+#include "core/registry.hpp"
+
+namespace gf {
+
+namespace dem {
+class System;
+}
+namespace fluid {
+class Solver;
+}
+namespace coupling {
+class Coupler;
+}
+
+/// What a monitor may look at: read-only views of the solver parts that exist in this run.
+struct RunState {
+  double time = 0.0;       // s
+  long long step = 0;      // DEM steps done
+  const dem::System* dem = nullptr;
+  const fluid::Solver* fluid = nullptr;
+  const coupling::Coupler* coupling = nullptr;
+};
+
+struct MonitorColumn {
+  std::string name;
+  std::string unit;
+};
+
+class Monitor {
+ public:
+  virtual ~Monitor() = default;
+  virtual std::vector<MonitorColumn> columns() const = 0;
+  virtual std::vector<double> sample(const RunState& state) = 0;
+};
+
+}  // namespace gf
