@@ -1,0 +1,126 @@
+#include "dem/contact/contact_table.hpp"
+
+#include <fmt/format.h>
+
+#include "core/params.hpp"
+
+namespace gf::dem {
+
+double effectiveYoungs(const Material& a, const Material& b) {
+  return 1.0 / ((1.0 - a.poissonRatio * a.poissonRatio) / a.youngsModulus +
+                (1.0 - b.poissonRatio * b.poissonRatio) / b.youngsModulus);
+}
+double effectiveShear(const Material& a, const Material& b) {
+  return 1.0 / (2.0 * (2.0 - a.poissonRatio) * (1.0 + a.poissonRatio) / a.youngsModulus +
+                2.0 * (2.0 - b.poissonRatio) * (1.0 + b.poissonRatio) / b.youngsModulus);
+}
+
+namespace {
+
+std::vector<Material> readMaterials(Params& root) {
+  std::vector<Material> out;
+  for (Params& m : root.list({"materials", "-", "particle and wall materials (index = position in the list)"})) {
+    Material mat;
+    mat.name = m.text({"name", "-", "material name (referenced by insertion and walls)"});
+    mat.density = m.real({"density", "kg/m^3", "solid density", Range::positive()}, 2500.0);
+    mat.youngsModulus = m.real({"youngs_modulus", "Pa", "Young's modulus E", Range::positive()}, 1e7);
+    mat.poissonRatio = m.real({"poisson_ratio", "-", "Poisson ratio nu", Range{-1.0, 0.5, false, false}}, 0.3);
+    out.push_back(mat);
+  }
+  if (out.empty() && !root.documenting())
+    root.fail("materials", "no material", "a list with at least one material (name, density, ...)");
+  return out;
+}
+
+PairProperties readPairProperties(Params& p, const PairProperties& defaults) {
+  PairProperties q;
+  q.restitution = p.real({"restitution", "-", "coefficient of normal restitution e", Range{0.0, 1.0, false, true}},
+                         defaults.restitution);
+  q.friction = p.real({"friction", "-", "sliding friction coefficient mu", Range::nonNegative()}, defaults.friction);
+  q.rollingFriction = p.real({"rolling_friction", "-", "rolling friction coefficient mu_r", Range::nonNegative()},
+                             defaults.rollingFriction);
+  q.cohesionEnergyDensity =
+      p.real({"cohesion_energy_density", "J/m^3", "cohesion energy density k_c (simplified_jkr)",
+              Range::nonNegative()},
+             defaults.cohesionEnergyDensity);
+  return q;
+}
+
+}  // namespace
+
+int ContactTable::materialIndex(const std::string& name) const {
+  for (std::size_t m = 0; m < materials_.size(); ++m)
+    if (materials_[m].name == name) return static_cast<int>(m);
+  return -1;
+}
+
+int ContactTable::readMaterial(Params& p, const Key& k, const std::string& defaultName) const {
+  const std::string fallback = defaultName.empty() && !materials_.empty() ? materials_.front().name : defaultName;
+  const std::string name = p.text(k, fallback);
+  if (p.documenting()) return 0;
+  const int index = materialIndex(name);
+  if (index < 0) {
+    std::string valid;
+    for (const Material& m : materials_) valid += (valid.empty() ? "" : ", ") + m.name;
+    p.fail(k.name, "'" + name + "'", "one of the materials: " + valid);
+  }
+  return index;
+}
+
+ContactTable::ContactTable(Params& root) {
+  materials_ = readMaterials(root);
+  count_ = static_cast<int>(materials_.size());
+  Params c = root.section({"contact", "-", "contact model (laws by name) and per-pair interaction parameters"});
+  lawModel_ = Registry<ContactLawModel>::instance().create(
+      c, {"law", "-", "normal/tangential contact law"}, "hertz_mindlin");
+  auto rolling = Registry<RollingModel>::instance().create(c, {"rolling", "-", "rolling resistance model"}, "none");
+  auto cohesion = Registry<CohesionModel>::instance().create(c, {"cohesion", "-", "cohesion model"}, "none");
+  normalLaw_ = lawModel_->law();
+  rollingLaw_ = rolling->law();
+  cohesionLaw_ = cohesion->law();
+  rollingDamping_ = rolling->dampingRatio();
+  const PairProperties defaults = readPairProperties(c, PairProperties{});
+  table_.assign(static_cast<std::size_t>(count_ * count_), PairCoefficients{});
+  for (int a = 0; a < count_; ++a)
+    for (int b = 0; b < count_; ++b) computePair(a, b, defaults);
+  for (Params& pp : c.list({"pairs", "-", "parameters of specific material pairs (override the defaults above)"})) {
+    const int a = readMaterial(pp, {"material_a", "-", "first material of the pair"});
+    const int b = readMaterial(pp, {"material_b", "-", "second material of the pair"});
+    const PairProperties q = readPairProperties(pp, defaults);
+    if (pp.documenting()) continue;
+    computePair(a, b, q);
+    computePair(b, a, q);
+  }
+}
+
+void ContactTable::computePair(int a, int b, const PairProperties& p) {
+  PairCoefficients& c = table_[a * count_ + b];
+  c = PairCoefficients{};
+  c.effectiveYoungs = effectiveYoungs(materials_[a], materials_[b]);
+  c.effectiveShear = effectiveShear(materials_[a], materials_[b]);
+  c.friction = p.friction;
+  c.rollingFriction = p.rollingFriction;
+  c.cohesionEnergyDensity = p.cohesionEnergyDensity;
+  c.restitution = p.restitution;
+  c.rollingDamping = rollingDamping_;
+  lawModel_->fill(c, materials_[a], materials_[b], p);
+}
+
+void ContactTable::configure(std::vector<Material> materials, NormalLaw law, RollingLaw rolling,
+                             CohesionLaw cohesion, const PairProperties& allPairs, double hookeStiffness,
+                             double rollingDamping) {
+  materials_ = std::move(materials);
+  count_ = static_cast<int>(materials_.size());
+  normalLaw_ = law;
+  rollingLaw_ = rolling;
+  cohesionLaw_ = cohesion;
+  rollingDamping_ = rollingDamping;
+  Params p = Params::loadString(fmt::format("normal_stiffness: {}\n", hookeStiffness), "(configure)");
+  lawModel_ = Registry<ContactLawModel>::instance().createByName(
+      law == NormalLaw::Hooke ? "hooke" : "hertz_mindlin", p);
+  table_.assign(static_cast<std::size_t>(count_ * count_), PairCoefficients{});
+  for (int a = 0; a < count_; ++a)
+    for (int b = 0; b < count_; ++b) computePair(a, b, allPairs);
+}
+
+}  // namespace gf::dem

@@ -1,0 +1,11 @@
+#include "dem/insertion/size_distribution.hpp"
+
+namespace gf::dem {
+
+std::unique_ptr<SizeDistribution> readSizeDistribution(Params& p) {
+  Params s = p.section({"size", "-", "particle size distribution"});
+  return Registry<SizeDistribution>::instance().create(s, {"distribution", "-", "size distribution model"},
+                                                       "constant");
+}
+
+}  // namespace gf::dem
