@@ -167,7 +167,7 @@ void wallContactForces(ParticleSet& p, WallContactList& list, const ContactTable
     const double ri = p.radius[i], mi = p.mass[i];
     for (std::uint32_t k = first; k < last; ++k) {
       const WallPrimitive& prim = (*walls.primitives)[list.primitive[k]];
-      const WallDistance wd = distanceToPrimitive(prim, xi);
+      const WallDistance wd = prim.active ? distanceToPrimitive(prim, xi) : WallDistance{1e300, {}};
       if (wd.distance >= ri) {
         list.tangentialHistory[k] = Vec3{};
         if constexpr (R == RollingLaw::Epsd) list.rollingHistory[k] = Vec3{};

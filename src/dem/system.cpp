@@ -41,7 +41,11 @@ void System::readWalls(Params& root) {
     motion.velocity = w.vec3({"velocity", "m/s", "translation velocity of the wall"}, {});
     motion.angularVelocity = w.vec3({"angular_velocity", "rad/s", "angular velocity about 'centre'"}, {});
     motion.centre = w.vec3({"centre", "m", "centre of rotation at t = 0 (moves with the wall)"}, {});
+    const double activeUntil = w.real({"active_until", "s", "the wall disappears at this time (e.g. an orifice plug)",
+                                       Range::nonNegative()},
+                                      std::numeric_limits<double>::infinity());
     if (w.documenting()) continue;
+    wallActiveUntil_.push_back(activeUntil);
     const int index = static_cast<int>(wallNames_.size());
     wallNames_.push_back(name);
     wallMaterial_.push_back(material);
@@ -87,6 +91,7 @@ void System::updateWalls() {
   }
   for (std::size_t k = 0; k < referencePrimitives_.size(); ++k) {
     const WallPrimitive& ref = referencePrimitives_[k];
+    primitives_[k].active = time_ < wallActiveUntil_[ref.wall];
     const WallMotion& m = wallMotion_[ref.wall];
     if (m.velocity == Vec3{} && m.angularVelocity == Vec3{}) continue;
     const Vec3 theta = time_ * m.angularVelocity;
@@ -139,15 +144,8 @@ void System::refresh() {
   computeForces(0.0);
 }
 
-bool System::needsRebuild() const {
-  if (list_.rows() != particles_.size()) return true;
-  const std::int64_t n = static_cast<std::int64_t>(particles_.size());
-  double maxDisplacement2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : maxDisplacement2)
-  for (std::int64_t i = 0; i < n; ++i)
-    maxDisplacement2 =
-        std::max(maxDisplacement2, normSquared(box_.minimumImage(particles_.position[i] - positionAtBuild_[i])));
-  const double particleMove = std::sqrt(maxDisplacement2);
+bool System::needsRebuild(double particleMove) const {
+  if (list_.rows() != particles_.size() || positionAtBuild_.size() != particles_.size()) return true;
   double wallMove = 0.0;
   const double elapsed = time_ - timeAtBuild_;
   for (std::size_t w = 0; w < wallMotion_.size(); ++w)
@@ -197,21 +195,29 @@ void System::computeForces(double dt) {
 
 void System::step(double dt) {
   ParticleSet& p = particles_;
+  const std::int64_t n = static_cast<std::int64_t>(p.size());
+  double maxDisplacement2 = 0.0;
   {
-    // Velocity Verlet (translation and rotation of spheres): half kick with old forces, drift.
+    // Velocity Verlet (translation and rotation of spheres): half kick with old forces, drift;
+    // the largest displacement since the last list build comes with the drift.
     ScopedPhase timer(timers_, Phase::Integration);
-    parallelFor(static_cast<std::int64_t>(p.size()), [&](std::int64_t i) {
+    const bool tracked = positionAtBuild_.size() == p.size();
+#pragma omp parallel for schedule(static) reduction(max : maxDisplacement2)
+    for (std::int64_t i = 0; i < n; ++i) {
       const double invMass = 1.0 / p.mass[i];
       p.velocity[i] += (0.5 * dt * invMass) * p.force[i];
       p.angularVelocity[i] += (0.5 * dt * invMass / (0.4 * p.radius[i] * p.radius[i])) * p.torque[i];
       p.position[i] = box_.wrap(p.position[i] + dt * p.velocity[i]);
-    });
+      if (tracked)
+        maxDisplacement2 =
+            std::max(maxDisplacement2, normSquared(box_.minimumImage(p.position[i] - positionAtBuild_[i])));
+    }
   }
   time_ += dt;
   updateWalls();
   const std::size_t before = p.size();
   const bool inserted = insertAndRemove(dt);
-  if (inserted || needsRebuild()) {
+  if (inserted || needsRebuild(std::sqrt(maxDisplacement2))) {
     std::vector<std::uint32_t> order(p.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
     rebuild(std::move(order), std::min(before, list_.rows()));
@@ -282,7 +288,8 @@ ContactStatistics System::contactStatistics() const {
       s.maxOverlapRatio = std::max(s.maxOverlapRatio, overlap / std::min(p.radius[i], p.radius[j]));
     }
     for (std::uint32_t k = wallList_.rowStart[i]; k < wallList_.rowStart[i + 1]; ++k) {
-      const double overlap = p.radius[i] - distanceToPrimitive(primitives_[wallList_.primitive[k]], p.position[i]).distance;
+      const WallPrimitive& w = primitives_[wallList_.primitive[k]];
+      const double overlap = w.active ? p.radius[i] - distanceToPrimitive(w, p.position[i]).distance : 0.0;
       if (overlap <= 0.0) continue;
       ++s.wallContacts;
       s.maxOverlapRatio = std::max(s.maxOverlapRatio, overlap / p.radius[i]);
@@ -315,7 +322,7 @@ EnergyBalance System::energy() const {
     }
     for (std::uint32_t k = wallList_.rowStart[i]; k < wallList_.rowStart[i + 1]; ++k) {
       const WallPrimitive& w = primitives_[wallList_.primitive[k]];
-      const double overlap = p.radius[i] - distanceToPrimitive(w, p.position[i]).distance;
+      const double overlap = w.active ? p.radius[i] - distanceToPrimitive(w, p.position[i]).distance : 0.0;
       if (overlap > 0.0) e.elastic += stored(table_.pair(p.type[i], wallMaterial_[w.wall]), p.radius[i], overlap);
     }
   }

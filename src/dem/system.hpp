@@ -90,7 +90,7 @@ class System {
   void readWalls(Params& root);
   void updateWalls();
   bool insertAndRemove(double dt);
-  bool needsRebuild() const;
+  bool needsRebuild(double maxParticleDisplacement) const;
   void rebuild(std::vector<std::uint32_t> order, std::size_t listedRows);
   void computeForces(double dt);
 
@@ -113,7 +113,8 @@ class System {
   std::vector<int> wallMaterial_;
   std::vector<WallMotion> wallMotion_;
   std::vector<bool> wallGeometryMoves_;
-  std::vector<double> wallReach_;  // max distance of the wall's geometry from its centre
+  std::vector<double> wallReach_;
+  std::vector<double> wallActiveUntil_;  // s  // max distance of the wall's geometry from its centre
   std::vector<Vec3> wallVelocity_, wallAngularVelocity_, wallCentre_;
   std::vector<WallPrimitive> referencePrimitives_, primitives_;
 

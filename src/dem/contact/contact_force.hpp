@@ -51,11 +51,13 @@ inline ContactResult contactForce(const PairCoefficients& c, const ContactGeomet
   const Vec3 vt = g.relativeVelocity - vn * n;
   double elastic, gammaN, kt, knLinear;
   if constexpr (N == NormalLaw::HertzMindlin) {
-    const double kHertz = hertz::stiffnessPrefactor(c.effectiveYoungs, g.effectiveRadius);
-    elastic = hertz::elasticForce(kHertz, g.overlap);
-    gammaN = hertz::dampingCoefficient(c.damping, kHertz, g.effectiveMass, g.overlap);
-    kt = hertz::tangentialStiffness(c.effectiveShear, g.effectiveRadius, g.overlap);
-    knLinear = 1.5 * kHertz * std::sqrt(g.overlap);
+    // One square root for all Hertz-Mindlin terms: sqrt(R* d) (see hertz_mindlin.hpp).
+    const double sqrtRd = std::sqrt(g.effectiveRadius * g.overlap);
+    const double kHertzSqrtD = 4.0 / 3.0 * c.effectiveYoungs * sqrtRd;  // k_hz sqrt(d)
+    elastic = kHertzSqrtD * g.overlap;
+    gammaN = c.damping * std::sqrt(g.effectiveMass * kHertzSqrtD);
+    kt = 8.0 * c.effectiveShear * sqrtRd;
+    knLinear = 1.5 * kHertzSqrtD;
   } else {
     elastic = c.normalStiffness * g.overlap;
     gammaN = hooke::dampingCoefficient(c.damping, c.normalStiffness, g.effectiveMass);

@@ -3,6 +3,7 @@
 // resistance model and a cohesion model, each chosen by name in the case file and each one file.
 // The models only fill per-material-pair coefficients; the force loop is compiled once per
 // combination (contact_kernel.hpp) and picked before the loop, so no virtual call per contact.
+#include <limits>
 #include <string>
 
 #include "core/params.hpp"
@@ -19,6 +20,12 @@ struct Material {
   double density = 2500.0;     // kg/m^3
   double youngsModulus = 1e7;  // Pa
   double poissonRatio = 0.3;   // -
+  // Optional per-material interaction values (NaN = not given); a pair uses the mean of its two
+  // materials' values where given, else the `contact` default, unless `contact.pairs` sets it.
+  double restitution = std::numeric_limits<double>::quiet_NaN();
+  double friction = std::numeric_limits<double>::quiet_NaN();
+  double rollingFriction = std::numeric_limits<double>::quiet_NaN();
+  double cohesionEnergyDensity = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Interaction parameters of one material pair (read from the case).

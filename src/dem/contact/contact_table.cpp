@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "core/params.hpp"
 
 namespace gf::dem {
@@ -25,6 +27,19 @@ std::vector<Material> readMaterials(Params& root) {
     mat.density = m.real({"density", "kg/m^3", "solid density", Range::positive()}, 2500.0);
     mat.youngsModulus = m.real({"youngs_modulus", "Pa", "Young's modulus E", Range::positive()}, 1e7);
     mat.poissonRatio = m.real({"poisson_ratio", "-", "Poisson ratio nu", Range{-1.0, 0.5, false, false}}, 0.3);
+    // Optional per-material shortcuts for the pair parameters (see contact.pairs).
+    auto optional = [&](const Key& k, Range r) {
+      return m.has(k.name) || m.documenting() ? m.real({k.name, k.unit, k.help, r}, 0.0)
+                                              : std::numeric_limits<double>::quiet_NaN();
+    };
+    mat.restitution = optional({"restitution", "-", "optional: restitution e of this material (pair: mean)"},
+                               Range{0.0, 1.0, false, true});
+    mat.friction = optional({"friction", "-", "optional: sliding friction mu of this material (pair: mean)"},
+                            Range::nonNegative());
+    mat.rollingFriction = optional({"rolling_friction", "-", "optional: rolling friction mu_r (pair: mean)"},
+                                   Range::nonNegative());
+    mat.cohesionEnergyDensity = optional(
+        {"cohesion_energy_density", "J/m^3", "optional: cohesion energy density (pair: mean)"}, Range::nonNegative());
     out.push_back(mat);
   }
   if (out.empty() && !root.documenting())
@@ -44,6 +59,22 @@ PairProperties readPairProperties(Params& p, const PairProperties& defaults) {
               Range::nonNegative()},
              defaults.cohesionEnergyDensity);
   return q;
+}
+
+/// Pair values from the per-material shortcuts: mean of the values given, else the default.
+PairProperties materialPair(const Material& a, const Material& b, const PairProperties& defaults) {
+  auto combine = [](double x, double y, double fallback) {
+    if (!std::isnan(x) && !std::isnan(y)) return 0.5 * (x + y);
+    if (!std::isnan(x)) return x;
+    if (!std::isnan(y)) return y;
+    return fallback;
+  };
+  PairProperties p;
+  p.restitution = combine(a.restitution, b.restitution, defaults.restitution);
+  p.friction = combine(a.friction, b.friction, defaults.friction);
+  p.rollingFriction = combine(a.rollingFriction, b.rollingFriction, defaults.rollingFriction);
+  p.cohesionEnergyDensity = combine(a.cohesionEnergyDensity, b.cohesionEnergyDensity, defaults.cohesionEnergyDensity);
+  return p;
 }
 
 }  // namespace
@@ -82,12 +113,15 @@ ContactTable::ContactTable(Params& root) {
   const PairProperties defaults = readPairProperties(c, PairProperties{});
   table_.assign(static_cast<std::size_t>(count_ * count_), PairCoefficients{});
   for (int a = 0; a < count_; ++a)
-    for (int b = 0; b < count_; ++b) computePair(a, b, defaults);
+    for (int b = 0; b < count_; ++b) computePair(a, b, materialPair(materials_[a], materials_[b], defaults));
   for (Params& pp : c.list({"pairs", "-", "parameters of specific material pairs (override the defaults above)"})) {
     const int a = readMaterial(pp, {"material_a", "-", "first material of the pair"});
     const int b = readMaterial(pp, {"material_b", "-", "second material of the pair"});
-    const PairProperties q = readPairProperties(pp, defaults);
-    if (pp.documenting()) continue;
+    if (pp.documenting()) {
+      readPairProperties(pp, defaults);
+      continue;
+    }
+    const PairProperties q = readPairProperties(pp, materialPair(materials_[a], materials_[b], defaults));
     computePair(a, b, q);
     computePair(b, a, q);
   }

@@ -19,6 +19,7 @@ struct WallPrimitive {
   // Axisymmetric: a = point on the axis at s = 0, b = unit axis; radius r0 at s = 0, r1 at s = length.
   Vec3 a, b, c;
   double r0 = 0.0, r1 = 0.0, length = 0.0;
+  bool active = true;  // false once the wall's `active_until` time has passed
 };
 
 struct WallDistance {
