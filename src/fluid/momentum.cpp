@@ -2,7 +2,7 @@
 // viscous and drag terms solved with Jacobi-preconditioned BiCGStab per velocity component.
 #include <cmath>
 
-#include "core/parallel.hpp"
+#include "fluid/loops.hpp"
 #include "fluid/schemes.hpp"
 #include "fluid/solver.hpp"
 
@@ -202,7 +202,7 @@ int Solver::solveHelmholtz(int c, double dt, double g0) {
   Field& y = precY_[c];
   Field& z = precZ_[c];
   auto dot = [&](const std::vector<double>& a, const std::vector<double>& b) {
-    return parallelSum(n, [&](std::int64_t q) { return a[list[q]] * b[list[q]]; });
+    return parallelSumElements(n, [&](std::int64_t q) { return a[list[q]] * b[list[q]]; });
   };
   // Jacobi diagonal into t (temporarily) to precondition.
   std::vector<double>& diag = v;
@@ -213,18 +213,18 @@ int Solver::solveHelmholtz(int c, double dt, double g0) {
     helmholtzKernel<false>(x, diag, unknown_[c], coupling_.voidFraction, coupling_.dragCoefficient, c, mu_,
                            rho_ * g0 / dt, twoD_ ? 2 : 3, true);
   std::vector<double> invDiag(n);
-  parallelFor(n, [&](std::int64_t q) { invDiag[q] = 1.0 / diag[list[q]]; });
+  parallelForElements(n, [&](std::int64_t q) { invDiag[q] = 1.0 / diag[list[q]]; });
 
   fillVelocityGhosts(x, c, bc_, GhostMode::Full);
   applyHelmholtz(c, x, t, dt, g0);
-  parallelFor(n, [&](std::int64_t q) {
+  parallelForElements(n, [&](std::int64_t q) {
     const auto f = list[q];
     r[f] = B[f] - t[f];
     rhat[f] = r[f];
     p[f] = 0.0;
     v[f] = 0.0;
   });
-  const double bnorm = std::sqrt(parallelSum(n, [&](std::int64_t q) { return B[list[q]] * B[list[q]]; }));
+  const double bnorm = std::sqrt(parallelSumElements(n, [&](std::int64_t q) { return B[list[q]] * B[list[q]]; }));
   const double tol = momentumTolerance_ * (bnorm > 0.0 ? bnorm : 1.0);
   double rnorm = std::sqrt(dot(r, r));
   int it = 0;
@@ -237,7 +237,7 @@ int Solver::solveHelmholtz(int c, double dt, double g0) {
     if (rhoNew == 0.0) break;
     const double beta = (rhoNew / rho) * (alpha / omega);
     rho = rhoNew;
-    parallelFor(n, [&](std::int64_t q) {
+    parallelForElements(n, [&](std::int64_t q) {
       const auto f = list[q];
       p[f] = r[f] + beta * (p[f] - omega * v[f]);
       Y[f] = p[f] * invDiag[q];
@@ -245,22 +245,22 @@ int Solver::solveHelmholtz(int c, double dt, double g0) {
     fillVelocityGhosts(y, c, bc_, GhostMode::Homogeneous);
     applyHelmholtz(c, y, v, dt, g0);
     alpha = rho / dot(rhat, v);
-    parallelFor(n, [&](std::int64_t q) {
+    parallelForElements(n, [&](std::int64_t q) {
       const auto f = list[q];
       s[f] = r[f] - alpha * v[f];
     });
     const double snorm = std::sqrt(dot(s, s));
     if (snorm <= tol) {
-      parallelFor(n, [&](std::int64_t q) { X[list[q]] += alpha * Y[list[q]]; });
+      parallelForElements(n, [&](std::int64_t q) { X[list[q]] += alpha * Y[list[q]]; });
       rnorm = snorm;
       break;
     }
-    parallelFor(n, [&](std::int64_t q) { Z[list[q]] = s[list[q]] * invDiag[q]; });
+    parallelForElements(n, [&](std::int64_t q) { Z[list[q]] = s[list[q]] * invDiag[q]; });
     fillVelocityGhosts(z, c, bc_, GhostMode::Homogeneous);
     applyHelmholtz(c, z, t, dt, g0);
     const double tt = dot(t, t);
     omega = tt > 0.0 ? dot(t, s) / tt : 0.0;
-    parallelFor(n, [&](std::int64_t q) {
+    parallelForElements(n, [&](std::int64_t q) {
       const auto f = list[q];
       X[f] += alpha * Y[f] + omega * Z[f];
       r[f] = s[f] - omega * t[f];

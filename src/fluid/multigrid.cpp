@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/parallel.hpp"
+#include "fluid/loops.hpp"
 
 namespace gf::fluid {
 
@@ -13,7 +13,7 @@ constexpr std::size_t kCoarsestCells = 512;
 constexpr int kCoarsestSweeps = 40;
 
 double dotProduct(const std::vector<double>& a, const std::vector<double>& b) {
-  return parallelSum(static_cast<std::int64_t>(a.size()), [&](std::int64_t i) { return a[i] * b[i]; });
+  return parallelSumElements(static_cast<std::int64_t>(a.size()), [&](std::int64_t i) { return a[i] * b[i]; });
 }
 }  // namespace
 
@@ -280,10 +280,10 @@ void MultigridPoisson::precondition(const std::vector<double>& r, std::vector<do
 void MultigridPoisson::removeMean(std::vector<double>& v) const {
   const PoissonLevel& L = levels_[0];
   const auto n = static_cast<std::int64_t>(v.size());
-  const double count = parallelSum(n, [&](std::int64_t i) { return L.invDiag[i] > 0.0 ? 1.0 : 0.0; });
+  const double count = parallelSumElements(n, [&](std::int64_t i) { return L.invDiag[i] > 0.0 ? 1.0 : 0.0; });
   if (count == 0.0) return;
-  const double mean = parallelSum(n, [&](std::int64_t i) { return L.invDiag[i] > 0.0 ? v[i] : 0.0; }) / count;
-  parallelFor(n, [&](std::int64_t i) { v[i] = L.invDiag[i] > 0.0 ? v[i] - mean : 0.0; });
+  const double mean = parallelSumElements(n, [&](std::int64_t i) { return L.invDiag[i] > 0.0 ? v[i] : 0.0; }) / count;
+  parallelForElements(n, [&](std::int64_t i) { v[i] = L.invDiag[i] > 0.0 ? v[i] - mean : 0.0; });
 }
 
 PoissonResult MultigridPoisson::solve(std::vector<double>& x, const std::vector<double>& b, double tol,
@@ -298,7 +298,7 @@ PoissonResult MultigridPoisson::solve(std::vector<double>& x, const std::vector<
     return result;
   }
   applyLevel(levels_[0], x, q_);
-  parallelFor(n, [&](std::int64_t i) { r_[i] -= q_[i]; });
+  parallelForElements(n, [&](std::int64_t i) { r_[i] -= q_[i]; });
   if (singular_) removeMean(r_);
   double rnorm = std::sqrt(dotProduct(r_, r_));
   result.relativeResidual = rnorm / bnorm;
@@ -311,7 +311,7 @@ PoissonResult MultigridPoisson::solve(std::vector<double>& x, const std::vector<
     const double pq = dotProduct(p_, q_);
     if (pq <= 0.0) break;
     const double alpha = rz / pq;
-    parallelFor(n, [&](std::int64_t i) {
+    parallelForElements(n, [&](std::int64_t i) {
       x[i] += alpha * p_[i];
       r_[i] -= alpha * q_[i];
     });
@@ -323,7 +323,7 @@ PoissonResult MultigridPoisson::solve(std::vector<double>& x, const std::vector<
     const double rzNew = dotProduct(r_, z_);
     const double beta = rzNew / rz;
     rz = rzNew;
-    parallelFor(n, [&](std::int64_t i) { p_[i] = z_[i] + beta * p_[i]; });
+    parallelForElements(n, [&](std::int64_t i) { p_[i] = z_[i] + beta * p_[i]; });
   }
   result.converged = result.relativeResidual <= tol;
   if (singular_) removeMean(x);

@@ -4,7 +4,7 @@
 // so that the corrected velocity satisfies the discrete continuity equation of seed 000 eq. 5.3.
 #include <cmath>
 
-#include "core/parallel.hpp"
+#include "fluid/loops.hpp"
 #include "fluid/solver.hpp"
 
 namespace gf::fluid {
@@ -219,7 +219,7 @@ void Solver::project(double dt, double g0) {
     });
     fillVelocityGhosts(u, a, bc_, GhostMode::Full);
   }
-  parallelFor(static_cast<std::int64_t>(p_.data().size()), [&](std::int64_t q) { p_.data()[q] += phi_.data()[q]; });
+  parallelForElements(static_cast<std::int64_t>(p_.data().size()), [&](std::int64_t q) { p_.data()[q] += phi_.data()[q]; });
   fillCellGhosts(p_, bc_, CellGhostKind::Pressure);
 }
 

@@ -5,7 +5,7 @@
 // <= 0.4.
 #include <cmath>
 
-#include "core/parallel.hpp"
+#include "fluid/loops.hpp"
 #include "fluid/schemes.hpp"
 #include "fluid/solver.hpp"
 
@@ -81,10 +81,10 @@ void Solver::advanceScalar(double dt) {
   for (int s = 0; s < substeps; ++s) {
     fillCellGhosts(scalar_, bc_, CellGhostKind::Scalar);
     evaluate(scalar_, k1);
-    parallelFor(n, [&](std::int64_t q) { stage.data()[q] = scalar_.data()[q] + h * k1[q]; });
+    parallelForElements(n, [&](std::int64_t q) { stage.data()[q] = scalar_.data()[q] + h * k1[q]; });
     fillCellGhosts(stage, bc_, CellGhostKind::Scalar);
     evaluate(stage, k2);
-    parallelFor(n, [&](std::int64_t q) {
+    parallelForElements(n, [&](std::int64_t q) {
       scalar_.data()[q] = 0.5 * scalar_.data()[q] + 0.5 * (stage.data()[q] + h * k2[q]);
     });
   }

@@ -15,7 +15,7 @@ inline double faceValue(double flux, double qm, double q0, double q1, double q2)
     return 0.5 * (q0 + q1);
   } else {
     if (flux >= 0.0) return q0 + 0.5 * vanLeerSlope(q0 - qm, q1 - q0);
-    return q1 - 0.5 * vanLeerSlope(q1 - q2, q0 - q1);
+    return q1 + 0.5 * vanLeerSlope(q1 - q2, q0 - q1);
   }
 }
 

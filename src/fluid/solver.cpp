@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "core/parallel.hpp"
+#include "fluid/loops.hpp"
 
 namespace gf::fluid {
 
