@@ -41,13 +41,25 @@ inline void parallelForElements(std::int64_t n, Body&& body) {
   }
 }
 
+/// Sum with four interleaved partial sums (fixed order, so deterministic): breaks the add
+/// latency chain of a single accumulator.
+template <class Body>
+inline double serialSum4(std::int64_t n, Body&& body) {
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  std::int64_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    s0 += body(i);
+    s1 += body(i + 1);
+    s2 += body(i + 2);
+    s3 += body(i + 3);
+  }
+  for (; i < n; ++i) s0 += body(i);
+  return (s0 + s1) + (s2 + s3);
+}
+
 template <class Body>
 inline double parallelSumElements(std::int64_t n, Body&& body) {
-  if (n < kSerialElementsBelow || gf::threadCount() == 1) {
-    double s = 0.0;
-    for (std::int64_t i = 0; i < n; ++i) s += body(i);
-    return s;
-  }
+  if (n < kSerialElementsBelow || gf::threadCount() == 1) return serialSum4(n, body);
   return gf::parallelSum(n, body);
 }
 

@@ -187,50 +187,63 @@ void Solver::applyHelmholtz(int c, const Field& x, std::vector<double>& y, doubl
 }
 
 int Solver::solveHelmholtz(int c, double dt, double g0) {
-  const auto& list = unknownList_[c];
-  const auto n = static_cast<std::int64_t>(list.size());
-  if (n == 0) return 0;
+  // Jacobi-preconditioned BiCGStab (van der Vorst 1992) on the correction of u_c. The vectors
+  // span the whole flat array (ghosts included) and are zero off the unknown faces, so every
+  // vector operation is one contiguous loop.
+  if (unknownList_[c].empty()) {
+    uOld_[c].data() = u_[c].data();
+    return 0;
+  }
   Field& x = u_[c];
+  const auto n = static_cast<std::int64_t>(x.data().size());
   double* X = x.data().data();
   const double* B = rhs_[c].data().data();
-  auto& r = krylov_[0];
-  auto& rhat = krylov_[1];
-  auto& p = krylov_[2];
-  auto& v = krylov_[3];
-  auto& s = krylov_[4];
-  auto& t = krylov_[5];
+  double* r = krylov_[0].data();
+  double* rhat = krylov_[1].data();
+  double* p = krylov_[2].data();
+  double* v = krylov_[3].data();
+  double* s = krylov_[4].data();
+  double* t = krylov_[5].data();
+  double* invDiag = krylov_[6].data();
   Field& y = precY_[c];
   Field& z = precZ_[c];
-  auto dot = [&](const std::vector<double>& a, const std::vector<double>& b) {
-    return parallelSumElements(n, [&](std::int64_t q) { return a[list[q]] * b[list[q]]; });
+  double* Y = y.data().data();
+  double* Z = z.data().data();
+  const auto& mask = unknown_[c];
+  auto dot = [&](const double* a, const double* b) {
+    return parallelSumElements(n, [&](std::int64_t q) { return a[q] * b[q]; });
   };
-  // Jacobi diagonal into t (temporarily) to precondition.
-  std::vector<double>& diag = v;
+  const int dims = twoD_ ? 2 : 3;
   if (uniformCoupling_)
-    helmholtzKernel<true>(x, diag, unknown_[c], coupling_.voidFraction, coupling_.dragCoefficient, c, mu_,
-                          rho_ * g0 / dt, twoD_ ? 2 : 3, true);
+    helmholtzKernel<true>(x, krylov_[6], mask, coupling_.voidFraction, coupling_.dragCoefficient, c, mu_,
+                          rho_ * g0 / dt, dims, true);
   else
-    helmholtzKernel<false>(x, diag, unknown_[c], coupling_.voidFraction, coupling_.dragCoefficient, c, mu_,
-                           rho_ * g0 / dt, twoD_ ? 2 : 3, true);
-  std::vector<double> invDiag(n);
-  parallelForElements(n, [&](std::int64_t q) { invDiag[q] = 1.0 / diag[list[q]]; });
-
-  fillVelocityGhosts(x, c, bc_, GhostMode::Full);
-  applyHelmholtz(c, x, t, dt, g0);
+    helmholtzKernel<false>(x, krylov_[6], mask, coupling_.voidFraction, coupling_.dragCoefficient, c, mu_,
+                           rho_ * g0 / dt, dims, true);
+  // Initial guess: u^n extrapolated in time, 2 u^n - u^{n-1} (second order).
+  double* Uo = uOld_[c].data().data();
+  double* Un = krylov_[7].data();
   parallelForElements(n, [&](std::int64_t q) {
-    const auto f = list[q];
-    r[f] = B[f] - t[f];
-    rhat[f] = r[f];
-    p[f] = 0.0;
-    v[f] = 0.0;
+    invDiag[q] = mask[q] ? 1.0 / invDiag[q] : 0.0;
+    Un[q] = X[q];
+    if (mask[q]) X[q] = 2.0 * X[q] - Uo[q];
+    Uo[q] = Un[q];  // u^{n-1} <- u^n for the next step
   });
-  const double bnorm = std::sqrt(parallelSumElements(n, [&](std::int64_t q) { return B[list[q]] * B[list[q]]; }));
+  fillVelocityGhosts(x, c, bc_, GhostMode::Full);
+  applyHelmholtz(c, x, krylov_[5], dt, g0);
+  parallelForElements(n, [&](std::int64_t q) {
+    r[q] = mask[q] ? B[q] - t[q] : 0.0;
+    rhat[q] = r[q];
+    p[q] = 0.0;
+    v[q] = 0.0;
+    t[q] = 0.0;
+    s[q] = 0.0;
+  });
+  const double bnorm = std::sqrt(parallelSumElements(n, [&](std::int64_t q) { return mask[q] ? B[q] * B[q] : 0.0; }));
   const double tol = momentumTolerance_ * (bnorm > 0.0 ? bnorm : 1.0);
   double rnorm = std::sqrt(dot(r, r));
   int it = 0;
   double rho = 1.0, alpha = 1.0, omega = 1.0;
-  double* Y = y.data().data();
-  double* Z = z.data().data();
   while (rnorm > tol && it < momentumMaxIterations_) {
     ++it;
     const double rhoNew = dot(rhat, r);
@@ -238,32 +251,27 @@ int Solver::solveHelmholtz(int c, double dt, double g0) {
     const double beta = (rhoNew / rho) * (alpha / omega);
     rho = rhoNew;
     parallelForElements(n, [&](std::int64_t q) {
-      const auto f = list[q];
-      p[f] = r[f] + beta * (p[f] - omega * v[f]);
-      Y[f] = p[f] * invDiag[q];
+      p[q] = r[q] + beta * (p[q] - omega * v[q]);
+      Y[q] = p[q] * invDiag[q];
     });
     fillVelocityGhosts(y, c, bc_, GhostMode::Homogeneous);
-    applyHelmholtz(c, y, v, dt, g0);
+    applyHelmholtz(c, y, krylov_[3], dt, g0);
     alpha = rho / dot(rhat, v);
-    parallelForElements(n, [&](std::int64_t q) {
-      const auto f = list[q];
-      s[f] = r[f] - alpha * v[f];
-    });
+    parallelForElements(n, [&](std::int64_t q) { s[q] = r[q] - alpha * v[q]; });
     const double snorm = std::sqrt(dot(s, s));
     if (snorm <= tol) {
-      parallelForElements(n, [&](std::int64_t q) { X[list[q]] += alpha * Y[list[q]]; });
+      parallelForElements(n, [&](std::int64_t q) { X[q] += alpha * Y[q]; });
       rnorm = snorm;
       break;
     }
-    parallelForElements(n, [&](std::int64_t q) { Z[list[q]] = s[list[q]] * invDiag[q]; });
+    parallelForElements(n, [&](std::int64_t q) { Z[q] = s[q] * invDiag[q]; });
     fillVelocityGhosts(z, c, bc_, GhostMode::Homogeneous);
-    applyHelmholtz(c, z, t, dt, g0);
+    applyHelmholtz(c, z, krylov_[5], dt, g0);
     const double tt = dot(t, t);
     omega = tt > 0.0 ? dot(t, s) / tt : 0.0;
     parallelForElements(n, [&](std::int64_t q) {
-      const auto f = list[q];
-      X[f] += alpha * Y[f] + omega * Z[f];
-      r[f] = s[f] - omega * t[f];
+      X[q] += alpha * Y[q] + omega * Z[q];
+      r[q] = s[q] - omega * t[q];
     });
     rnorm = std::sqrt(dot(r, r));
     if (omega == 0.0) break;

@@ -9,7 +9,7 @@ namespace gf::fluid {
 namespace {
 constexpr int kPreSmooth = 2;
 constexpr int kPostSmooth = 2;
-constexpr std::size_t kCoarsestCells = 512;
+constexpr std::size_t kCoarsestCells = 64;
 constexpr int kCoarsestSweeps = 40;
 
 double dotProduct(const std::vector<double>& a, const std::vector<double>& b) {

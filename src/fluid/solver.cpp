@@ -37,7 +37,7 @@ Solver::Solver(Params& root, const Domain& domain, const Vec3& gravity) : domain
   buildUnknownMasks();
   std::size_t maxSize = 0;
   for (int c = 0; c < 3; ++c) maxSize = std::max(maxSize, u_[c].data().size());
-  for (auto& v : krylov_) v.assign(maxSize, 0.0);
+  for (auto& v : krylov_) v.assign(maxSize, 0.0);  // r, rhat, p, v, s, t, 1/diag, u^n
   poissonRhs_.assign(grid_.interiorCellCount(), 0.0);
   poissonX_.assign(grid_.interiorCellCount(), 0.0);
 
@@ -76,7 +76,7 @@ void Solver::readParams(Params& fluid, const Domain& domain) {
   cflLimit_ = fluid.real({"cfl_limit", "-", "Courant number above which checkHealth stops the run", Range::positive()}, 1.0);
   momentumTolerance_ = fluid.real(
       {"momentum_tolerance", "-", "relative residual of the implicit momentum (Helmholtz) solves", Range::positive()},
-      1e-10);
+      1e-8);
   momentumMaxIterations_ = static_cast<int>(
       fluid.integer({"momentum_max_iterations", "-", "iteration cap of the momentum solves", Range::atLeast(1)}, 200));
   Params pressure = fluid.section({"pressure", "-", "pressure Poisson solver (multigrid-preconditioned CG)"});
@@ -238,9 +238,8 @@ void Solver::step(double dt) {
   computeConvection(conv_);
   stats_ = StepStatistics{};
   for (int c = 0; c < (twoD_ ? 2 : 3); ++c) assembleMomentum(c, dt, g0, g1, g2, e1, e2);
-  for (int c = 0; c < 3; ++c) uOld_[c].data().swap(u_[c].data());  // uOld = u^n; u keeps a copy below
-  for (int c = 0; c < 3; ++c) u_[c].data() = uOld_[c].data();
-  for (int c = 0; c < (twoD_ ? 2 : 3); ++c) stats_.momentumIterations += solveHelmholtz(c, dt, g0);
+  // Each solve also moves u^n into uOld_ (u^{n-1} of the next step).
+  for (int c = 0; c < 3; ++c) stats_.momentumIterations += solveHelmholtz(c, dt, g0);
   balanceOutflow(dt);
   {
     ScopedPhase pt(timers_, Phase::PressureSolve);

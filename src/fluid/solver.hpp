@@ -119,7 +119,7 @@ class Solver {
   MomentumModel model_ = MomentumModel::A;
   ConvectionScheme scheme_ = ConvectionScheme::VanLeer;
   double cfl_ = 0.5, cflLimit_ = 1.0;
-  double momentumTolerance_ = 1e-10;
+  double momentumTolerance_ = 1e-8;
   int momentumMaxIterations_ = 200;
   double pressureTolerance_ = 1e-8;
   int pressureMaxIterations_ = 200;
@@ -138,7 +138,7 @@ class Solver {
   std::vector<std::uint8_t> blocked_;     // per cell-field point
   std::vector<std::uint8_t> unknown_[3];  // per face point: solved by the momentum equation
   std::vector<std::int64_t> unknownList_[3];
-  std::vector<double> krylov_[6];  // r, rhat, p, v, s, t
+  std::vector<double> krylov_[8];  // r, rhat, p, v, s, t, 1/diag, u^n
   Field precY_[3], precZ_[3];
   MultigridPoisson poisson_;
   double poissonKey_ = -1.0;  // rho gamma0 / dt of the current multigrid setup (-1: rebuild)

@@ -19,6 +19,7 @@ fluid:
   model: )" + model + R"(
   cells: [8, )" + std::to_string(ny) + R"(, 1]
   pressure: {tolerance: 1e-12}
+  momentum_tolerance: 1e-13
   driving: )" + driving + R"(
 )";
 }
