@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "core/parallel.hpp"
+#include "coupling/loops.hpp"
 #include "coupling/deposit.hpp"
 #include "coupling/forces.hpp"
 #include "coupling/smoothing.hpp"
@@ -146,7 +146,7 @@ void Coupler::sampleFluid(const FluidView& fluid, const CouplingFields& fields, 
   const Field* const eps[1] = {&fields.voidFraction};
   const double dPrimFactor = 1.0 / settings_.coarseGraining.factor;
   const double epsFloor = std::max(settings_.minVoidFraction, 1e-6);
-  parallelFor(static_cast<std::int64_t>(particles.size()), [&](std::int64_t ip) {
+  forEachIndex(static_cast<std::int64_t>(particles.size()), 64, [&](std::int64_t ip) {
     const auto p = static_cast<std::size_t>(ip);
     const Vec3 x = particles.position[p];
     double v3[3], v1[1];
@@ -187,7 +187,7 @@ void Coupler::computeForcesFromSamples(const FluidView& fluid, dem::ParticleSet&
   const double rho = fluid.density, mu = fluid.viscosity;
   if (w.virtualMass && !(fluid.timeStep > 0.0))
     throw std::invalid_argument("coupling: virtual mass force needs FluidView::timeStep > 0");
-  parallelFor(static_cast<std::int64_t>(particles.size()), [&](std::int64_t ip) {
+  forEachIndex(static_cast<std::int64_t>(particles.size()), 64, [&](std::int64_t ip) {
     const auto p = static_cast<std::size_t>(ip);
     const double d = 2.0 * particles.radius[p];
     const double dPrim = d * dPrimFactor;

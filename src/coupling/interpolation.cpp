@@ -1,6 +1,6 @@
 #include "coupling/interpolation.hpp"
 
-#include "core/parallel.hpp"
+#include "coupling/loops.hpp"
 
 namespace gf::coupling {
 namespace {
@@ -28,7 +28,7 @@ double derivative(const GridTopology& t, const Field& f, int i, int j, int k, in
 template <class Body>
 void forInteriorCells(const GridTopology& t, Body&& body) {
   const auto& n = t.grid.cells;
-  parallelFor(static_cast<std::int64_t>(n[2]) * n[1], [&](std::int64_t kj) {
+  forEachIndex(static_cast<std::int64_t>(n[2]) * n[1], n[0], [&](std::int64_t kj) {
     const int k = static_cast<int>(kj / n[1]);
     const int j = static_cast<int>(kj % n[1]);
     for (int i = 0; i < n[0]; ++i) body(i, j, k);

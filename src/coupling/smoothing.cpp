@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/parallel.hpp"
+#include "coupling/loops.hpp"
 
 namespace gf::coupling {
 namespace {
@@ -21,7 +21,7 @@ struct Compact {
 void apply(const GridTopology& t, double l2, const std::vector<double>& x, std::vector<double>& y) {
   const Compact c{t};
   const auto& n = t.grid.cells;
-  parallelFor(static_cast<std::int64_t>(n[2]) * n[1], [&](std::int64_t kj) {
+  forEachIndex(static_cast<std::int64_t>(n[2]) * n[1], n[0], [&](std::int64_t kj) {
     const int k = static_cast<int>(kj / n[1]);
     const int j = static_cast<int>(kj % n[1]);
     for (int i = 0; i < n[0]; ++i) {
@@ -45,7 +45,7 @@ void apply(const GridTopology& t, double l2, const std::vector<double>& x, std::
 }
 
 double dotProduct(const std::vector<double>& a, const std::vector<double>& b) {
-  return parallelSum(static_cast<std::int64_t>(a.size()), [&](std::int64_t i) { return a[i] * b[i]; });
+  return sumOverIndices(static_cast<std::int64_t>(a.size()), [&](std::int64_t i) { return a[i] * b[i]; });
 }
 
 }  // namespace

@@ -24,7 +24,7 @@
 #include <cstddef>
 #include <memory>
 
-#include "core/parallel.hpp"
+#include "coupling/loops.hpp"
 #include "core/params.hpp"
 #include "core/registry.hpp"
 
@@ -48,8 +48,8 @@ class DragLawOf final : public DragLaw {
   DragLawOf() = default;
   void evaluate(std::size_t n, const double* reynolds, const double* voidFraction,
                 double* correction) const override {
-    parallelFor(static_cast<std::int64_t>(n),
-                [&](std::int64_t i) { correction[i] = Correction(reynolds[i], voidFraction[i]); });
+    forEachIndex(static_cast<std::int64_t>(n), 8,
+                 [&](std::int64_t i) { correction[i] = Correction(reynolds[i], voidFraction[i]); });
   }
   double correction(double reynolds, double voidFraction) const override {
     return Correction(reynolds, voidFraction);

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "coupling/void_fraction/void_fraction_scheme.hpp"
-#include "core/parallel.hpp"
+#include "coupling/loops.hpp"
 
 namespace gf::coupling {
 namespace {
@@ -29,7 +29,7 @@ class BigParticleVoidFraction final : public VoidFractionScheme {
     for (int a = 0; a < 3; ++a) capacity *= static_cast<int>(std::ceil(2.0 * rMax / g.spacing[a])) + 2;
     stencils.resize(particles.size(), capacity);
     const int n = samples_;
-    parallelFor(static_cast<std::int64_t>(particles.size()), [&](std::int64_t p) {
+    forEachIndex(static_cast<std::int64_t>(particles.size()), 64, [&](std::int64_t p) {
       StencilWriter w(stencils, static_cast<std::size_t>(p));
       const Vec3 x = particles.position[p];
       const double r = particles.radius[p];

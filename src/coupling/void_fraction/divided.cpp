@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "coupling/void_fraction/void_fraction_scheme.hpp"
-#include "core/parallel.hpp"
+#include "coupling/loops.hpp"
 
 namespace gf::coupling {
 namespace {
@@ -42,7 +42,7 @@ class DividedVoidFraction final : public VoidFractionScheme {
                      ParticleStencils& stencils) const override {
     static const std::array<Vec3, kPoints> unit = unitSatellitePoints();
     stencils.resize(particles.size(), kPoints);
-    parallelFor(static_cast<std::int64_t>(particles.size()), [&](std::int64_t p) {
+    forEachIndex(static_cast<std::int64_t>(particles.size()), 29, [&](std::int64_t p) {
       StencilWriter w(stencils, static_cast<std::size_t>(p));
       const Vec3 x = particles.position[p];
       const double r = particles.radius[p];

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "coupling/void_fraction/void_fraction_scheme.hpp"
-#include "core/parallel.hpp"
+#include "coupling/loops.hpp"
 
 namespace gf::coupling {
 namespace {
@@ -33,7 +33,7 @@ class KernelVoidFraction final : public VoidFractionScheme {
       capacity *= 2 * reach[a] + 1;
     }
     stencils.resize(particles.size(), capacity);
-    parallelFor(static_cast<std::int64_t>(particles.size()), [&](std::int64_t p) {
+    forEachIndex(static_cast<std::int64_t>(particles.size()), 27, [&](std::int64_t p) {
       StencilWriter w(stencils, static_cast<std::size_t>(p));
       const Vec3 x = particles.position[p];
       const double h = std::max(radiusFactor_ * cellSize, particles.radius[p]);
