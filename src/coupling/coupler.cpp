@@ -103,6 +103,8 @@ void Coupler::fillGhosts(Field& f) const {
 void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFields& fields) {
   fields.voidFractionOld.data() = fields.voidFraction.data();
   scheme_->buildStencils(particles, topology_, stencils_);
+  stencilsReady_ = true;
+  forcesReady_ = false;
   const std::size_t n = particles.size();
   std::vector<double> volume(n);
   for (std::size_t p = 0; p < n; ++p) volume[p] = force::sphereVolume(2.0 * particles.radius[p]);
@@ -221,7 +223,7 @@ void Coupler::computeForcesFromSamples(const FluidView& fluid, dem::ParticleSet&
 void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields& fields,
                                     dem::ParticleSet& particles) {
   const std::size_t n = particles.size();
-  if (stencils_.size() != n)
+  if (!stencilsReady_ || stencils_.size() != n)
     throw std::logic_error("coupling: computeVoidFraction must run before computeParticleForces (particle count changed)");
   lastFluid_ = fluid;
   const ForceSwitches& w = settings_.forces;
@@ -246,11 +248,13 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
   computeForcesFromSamples(fluid, particles);
   previousId_ = particles.id;
   previousSlip_ = slip_;
+  forcesReady_ = true;
 }
 
 void Coupler::fillFluidSources(CouplingFields& fields) {
   const std::size_t n = stencils_.size();
-  if (dragForce_.size() != n) throw std::logic_error("coupling: computeParticleForces must run before fillFluidSources");
+  if (!forcesReady_ || dragForce_.size() != n)
+    throw std::logic_error("coupling: computeParticleForces must run before fillFluidSources");
   const bool implicit = settings_.exchange == ExchangeScheme::SemiImplicit;
   // channels: 0-2 explicit force on the fluid; implicit adds 3: beta, 4-6: beta (u_p - u_f@p)
   const int channels = implicit ? 7 : 3;

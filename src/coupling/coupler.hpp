@@ -129,6 +129,7 @@ class Coupler {
   std::vector<Vec3> previousSlip_;
   double particleVolume_ = 0.0, depositedVolume_ = 0.0, clippedVolume_ = 0.0;
   Vec3 balanceError_;
+  bool stencilsReady_ = false, forcesReady_ = false;
   double exchangedForceScale_ = 0.0;
 };
 
