@@ -88,16 +88,17 @@ Coupler::Coupler(Params& root, const CartesianGrid& grid, const std::array<bool,
 void Coupler::fillGhosts(Field& f) const {
   const auto& n = topology_.grid.cells;
   const int g = topology_.grid.ghosts;
+  // periodic: wrapped image; wall: nearest interior cell (zero normal gradient)
+  auto source = [&](int i, int a) { return topology_.periodic[a] ? topology_.mapIndex(i, a) : std::clamp(i, 0, n[a] - 1); };
   for (int k = -g; k < n[2] + g; ++k)
-    for (int j = -g; j < n[1] + g; ++j)
+    for (int j = -g; j < n[1] + g; ++j) {
+      const bool interiorRow = j >= 0 && j < n[1] && k >= 0 && k < n[2];
+      const int sj = source(j, 1), sk = source(k, 2);
       for (int i = -g; i < n[0] + g; ++i) {
-        if (topology_.grid.isInterior(i, j, k)) continue;
-        // periodic: wrapped image; wall: nearest interior cell (zero normal gradient)
-        int m[3] = {i, j, k};
-        for (int a = 0; a < 3; ++a)
-          m[a] = topology_.periodic[a] ? topology_.mapIndex(m[a], a) : std::clamp(m[a], 0, n[a] - 1);
-        f(i, j, k) = f(m[0], m[1], m[2]);
+        if (interiorRow && i == 0) i = n[0];  // skip the interior of the row
+        f(i, j, k) = f(source(i, 0), sj, sk);
       }
+    }
 }
 
 void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFields& fields) {
@@ -151,21 +152,23 @@ void Coupler::sampleFluid(const FluidView& fluid, const CouplingFields& fields, 
   forEachIndex(static_cast<std::int64_t>(particles.size()), 64, [&](std::int64_t ip) {
     const auto p = static_cast<std::size_t>(ip);
     const Vec3 x = particles.position[p];
+    SampleWeights sw;
+    sampleWeights<Mode>(topology_, stencils_, p, x, sw);
     double v3[3], v1[1];
-    sampleAt<Mode, 3>(topology_, stencils_, p, x, velocity, v3);
+    sampleFields<3>(sw, velocity, v3);
     fluidVelocityAtParticle_[p] = {v3[0], v3[1], v3[2]};
-    sampleAt<Mode, 1>(topology_, stencils_, p, x, eps, v1);
+    sampleFields<1>(sw, eps, v1);
     voidFractionAtParticle_[p] = std::clamp(v1[0], epsFloor, 1.0);
     if (w.pressureGradient) {
-      sampleAt<Mode, 3>(topology_, stencils_, p, x, gradP, v3);
+      sampleFields<3>(sw, gradP, v3);
       gradPAtParticle_[p] = {v3[0], v3[1], v3[2]};
     }
     if (needDivTau) {
-      sampleAt<Mode, 3>(topology_, stencils_, p, x, divTau, v3);
+      sampleFields<3>(sw, divTau, v3);
       divTauAtParticle_[p] = {v3[0], v3[1], v3[2]};
     }
     if (needVorticity) {
-      sampleAt<Mode, 3>(topology_, stencils_, p, x, vort, v3);
+      sampleFields<3>(sw, vort, v3);
       vorticityAtParticle_[p] = {v3[0], v3[1], v3[2]};
     }
     slip_[p] = fluidVelocityAtParticle_[p] - particles.velocity[p];

@@ -19,7 +19,10 @@ struct GridTopology {
 
   int mapIndex(int i, int axis) const {
     const int n = grid.cells[axis];
-    if (periodic[axis]) return ((i % n) + n) % n;
+    if (periodic[axis]) {
+      if (i >= 0 && i < n) return i;
+      return ((i % n) + n) % n;
+    }
     if (i < 0) i = -1 - i;
     if (i >= n) i = 2 * n - 1 - i;
     return i < 0 ? 0 : (i >= n ? n - 1 : i);

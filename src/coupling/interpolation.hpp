@@ -49,24 +49,61 @@ inline TrilinearWeights trilinearWeights(const GridTopology& t, const Vec3& x) {
   return w;
 }
 
-/// Sample of several fields at particle p (out[i] for fields[i]), mode resolved at compile time.
+/// Interpolation weights of one point: computed once per particle, applied to every field.
+/// Not copyable (cell/weight may point into the object itself).
+struct SampleWeights {
+  int count = 0;
+  const std::size_t* cell = nullptr;
+  const double* weight = nullptr;
+  std::size_t localCell[8];
+  double localWeight[8];
+  SampleWeights() = default;
+  SampleWeights(const SampleWeights&) = delete;
+  SampleWeights& operator=(const SampleWeights&) = delete;
+};
+
+/// Weights of particle p at x for the interpolation mode (resolved at compile time).
+template <InterpolationMode Mode>
+inline void sampleWeights(const GridTopology& t, const ParticleStencils& s, std::size_t p, const Vec3& x,
+                          SampleWeights& w) {
+  if constexpr (Mode == InterpolationMode::Cell) {
+    const auto c = t.cellOf(x);
+    w.count = 1;
+    w.localCell[0] = t.flat(c[0], c[1], c[2]);
+    w.localWeight[0] = 1.0;
+    w.cell = w.localCell;
+    w.weight = w.localWeight;
+  } else if constexpr (Mode == InterpolationMode::Trilinear) {
+    const TrilinearWeights tw = trilinearWeights(t, x);
+    w.count = 8;
+    for (int m = 0; m < 8; ++m) {
+      w.localCell[m] = tw.cell[m];
+      w.localWeight[m] = tw.weight[m];
+    }
+    w.cell = w.localCell;
+    w.weight = w.localWeight;
+  } else {
+    w.count = s.count[p];
+    w.cell = s.cell.data() + p * s.capacity;
+    w.weight = s.weight.data() + p * s.capacity;
+  }
+}
+
+/// out[i] = sum_m w_m fields[i][cell_m].
+template <int N>
+inline void sampleFields(const SampleWeights& w, const Field* const (&fields)[N], double (&out)[N]) {
+  for (int i = 0; i < N; ++i) out[i] = 0.0;
+  for (int m = 0; m < w.count; ++m)
+    for (int i = 0; i < N; ++i) out[i] += w.weight[m] * fields[i]->data()[w.cell[m]];
+}
+
+/// One-off sample of several fields at particle p (tests, diagnostics).
 template <InterpolationMode Mode, int N>
 inline void sampleAt(const GridTopology& t, const ParticleStencils& s, std::size_t p, const Vec3& x,
                      const Field* const (&fields)[N], double (&out)[N]) {
-  for (int i = 0; i < N; ++i) out[i] = 0.0;
-  if constexpr (Mode == InterpolationMode::Cell) {
-    const auto c = t.cellOf(x);
-    const std::size_t idx = t.flat(c[0], c[1], c[2]);
-    for (int i = 0; i < N; ++i) out[i] = fields[i]->data()[idx];
-  } else if constexpr (Mode == InterpolationMode::Trilinear) {
-    const TrilinearWeights w = trilinearWeights(t, x);
-    for (int m = 0; m < 8; ++m)
-      for (int i = 0; i < N; ++i) out[i] += w.weight[m] * fields[i]->data()[w.cell[m]];
-  } else {
-    const std::size_t base = p * s.capacity;
-    for (int e = 0; e < s.count[p]; ++e)
-      for (int i = 0; i < N; ++i) out[i] += s.weight[base + e] * fields[i]->data()[s.cell[base + e]];
-  }
+  SampleWeights w;
+  sampleWeights<Mode>(t, s, p, x, w);
+  sampleFields<N>(w, fields, out);
 }
 
 /// Vorticity omega = curl u of a cell-centred velocity (central differences; one-sided next to

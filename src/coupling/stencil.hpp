@@ -47,6 +47,14 @@ class StencilWriter {
       ++count_;
     }
   }
+  /// Adds an entry known to be new (no search).
+  void append(std::size_t cell, double w) {
+    if (count_ < capacity_) {
+      cell_[count_] = cell;
+      weight_[count_] = w;
+      ++count_;
+    }
+  }
   /// Scales the weights to sum 1; returns the sum before (0 if empty).
   double normalise() {
     double sum = 0.0;
