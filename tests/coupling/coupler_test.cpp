@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "core/monitor.hpp"
 #include "coupling_test_helpers.hpp"
 
 using namespace gf;
@@ -60,4 +61,26 @@ TEST(Coupler, CallOrderIsChecked) {
   CouplingFields f(g);
   EXPECT_THROW(c->computeParticleForces(fluid.view(1000.0, 1e-3), f, s), std::logic_error);
   EXPECT_THROW(c->fillFluidSources(f), std::logic_error);
+}
+
+TEST(Coupler, BalanceMonitorReportsRoundOffErrorAndVolumes) {
+  const CartesianGrid g = makeGrid({6, 6, 6}, {0.01, 0.01, 0.01});
+  auto c = makeCoupler("  min_void_fraction: 0\n", g);
+  dem::ParticleSet s = randomParticles(100, 0.001, 0.002, {0, 0, 0}, {0.06, 0.06, 0.06});
+  FluidFields fluid(g);
+  fluid.setVelocity(g, [](const Vec3& x) { return Vec3{x.y, 0.1, 0.0}; });
+  CouplingFields f(g);
+  c->computeVoidFraction(s, f);
+  c->computeParticleForces(fluid.view(1000.0, 1e-3), f, s);
+  c->fillFluidSources(f);
+  Params p = Params::loadString("x: 0\n", "m.yaml");
+  auto monitor = Registry<Monitor>::instance().createByName("coupling_balance", p);
+  RunState state;
+  state.coupling = c.get();
+  const auto values = monitor->sample(state);
+  ASSERT_EQ(values.size(), monitor->columns().size());
+  EXPECT_LT(values[3], 1e-13);
+  EXPECT_GT(values[4], 0.0);
+  EXPECT_NEAR(values[5] / values[4], 1.0, 1e-13);
+  EXPECT_EQ(values[6], 0.0);
 }
