@@ -39,8 +39,6 @@ CouplerSettings readSettings(Params& s) {
   c.minVoidFraction = s.real({"min_void_fraction", "-", "lower bound on eps (volume above it is reported as clipped)",
                               Range::between(0.0, 0.99)},
                              0.1);
-  c.demStepsPerFluidStep = static_cast<int>(
-      s.integer({"dem_steps_per_fluid_step", "-", "coupling interval in DEM steps", Range::atLeast(1)}, 1));
   c.minRelaxationToIntervalRatio =
       s.real({"min_relaxation_to_interval_ratio", "-",
               "warn when particle relaxation time / coupling interval is below this (seed 000 eq. 5.30)",
@@ -105,7 +103,6 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   fields.voidFractionOld.data() = fields.voidFraction.data();
   scheme_->buildStencils(particles, topology_, stencils_);
   stencilsReady_ = true;
-  forcesReady_ = false;
   const std::size_t n = particles.size();
   std::vector<double> volume(n);
   for (std::size_t p = 0; p < n; ++p) volume[p] = force::sphereVolume(2.0 * particles.radius[p]);
@@ -254,10 +251,44 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
   forcesReady_ = true;
 }
 
+void Coupler::realignToParticles(const dem::ParticleSet& particles) {
+  if (particles.id == previousId_) return;
+  // The DEM reordered (or inserted / removed) particles since computeParticleForces: move the
+  // per-particle exchange data to the new order by id; new particles exchange nothing.
+  std::unordered_map<std::int64_t, std::size_t> oldIndex;
+  oldIndex.reserve(previousId_.size());
+  for (std::size_t q = 0; q < previousId_.size(); ++q) oldIndex.emplace(previousId_[q], q);
+  const std::size_t n = particles.size();
+  std::vector<Vec3> drag(n), other(n), slip(n);
+  std::vector<double> beta(n, 0.0);
+  for (std::size_t p = 0; p < n; ++p) {
+    const auto it = oldIndex.find(particles.id[p]);
+    if (it == oldIndex.end()) continue;
+    drag[p] = dragForce_[it->second];
+    other[p] = otherExchangedForce_[it->second];
+    slip[p] = slip_[it->second];
+    beta[p] = beta_[it->second];
+  }
+  dragForce_ = std::move(drag);
+  otherExchangedForce_ = std::move(other);
+  slip_ = std::move(slip);
+  beta_ = std::move(beta);
+  previousSlip_ = slip_;
+  previousId_ = particles.id;
+}
+
+void Coupler::fillFluidSources(const dem::ParticleSet& particles, CouplingFields& fields) {
+  if (!forcesReady_) throw std::logic_error("coupling: computeParticleForces must run before fillFluidSources");
+  if (stencils_.size() != particles.size())
+    throw std::logic_error("coupling: computeVoidFraction must run on the current particle set before fillFluidSources");
+  realignToParticles(particles);
+  fillFluidSources(fields);
+}
+
 void Coupler::fillFluidSources(CouplingFields& fields) {
   const std::size_t n = stencils_.size();
   if (!forcesReady_ || dragForce_.size() != n)
-    throw std::logic_error("coupling: computeParticleForces must run before fillFluidSources");
+    throw std::logic_error("coupling: computeParticleForces must run before fillFluidSources (same particle set)");
   const bool implicit = settings_.exchange == ExchangeScheme::SemiImplicit;
   // channels: 0-2 explicit force on the fluid; implicit adds 3: beta, 4-6: beta (u_p - u_f@p)
   const int channels = implicit ? 7 : 3;
@@ -333,8 +364,9 @@ void Coupler::fillFluidSources(CouplingFields& fields) {
   balanceError_ = onParticles + onFluid;
 }
 
-CouplingIntervalCheck Coupler::checkCouplingInterval(double demTimeStep, const dem::ParticleSet& particles,
-                                                     const FluidView& fluid, double slip) const {
+CouplingIntervalCheck Coupler::checkCouplingInterval(double demTimeStep, int demStepsPerFluidStep,
+                                                     const dem::ParticleSet& particles, const FluidView& fluid,
+                                                     double slip) const {
   // the fastest-relaxing particle: smallest rho_p d_prim^2
   double best = -1.0, d = 0.0, rhoP = 0.0;
   for (std::size_t p = 0; p < particles.size(); ++p) {
@@ -347,7 +379,7 @@ CouplingIntervalCheck Coupler::checkCouplingInterval(double demTimeStep, const d
     }
   }
   if (best < 0.0) return {};
-  return gf::coupling::checkCouplingInterval(demTimeStep, settings_.demStepsPerFluidStep, rhoP, d, fluid.density,
+  return gf::coupling::checkCouplingInterval(demTimeStep, demStepsPerFluidStep, rhoP, d, fluid.density,
                                              fluid.viscosity, slip, settings_.minRelaxationToIntervalRatio);
 }
 

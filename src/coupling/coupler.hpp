@@ -1,17 +1,20 @@
 #pragma once
 // Unresolved CFD-DEM coupling: void fraction, fluid forces on particles, exchange fields for the
-// fluid. Formulas and model choices: docs/coupling.md. Call order per fluid (coupling) step:
+// fluid. Formulas and model choices: docs/coupling.md. One coupling (fluid) step, in the order of
+// Simulation::advance (fluid -> forces -> DEM substeps -> exchange fields -> fluid):
 //
-//   coupler.computeVoidFraction(particles, fields);            // stencils, eps (eps_old kept)
-//   fluid.advance(fields ...)  // or after the forces, as the time loop prefers
-//   coupler.computeParticleForces(fluidView, fields, particles); // externalForce/Torque of particles
-//   coupler.fillFluidSources(fields);                            // force density, K, u_p for the fluid
-//   coupler.momentumBalanceError();                              // Newton 3: ~1e-16 relative
-//   N x dem.step(dt_dem)                                          // externalForce held constant
+//   fluid.step(fields)                                             // uses eps, force density, K, u_p
+//   coupler.computeParticleForces(fluidView, fields, particles);   // externalForce/Torque, held over
+//   N x dem.step(dt_dem)                                           //   the DEM substeps
+//   coupler.computeVoidFraction(particles, fields);                // new stencils and eps (eps_old kept)
+//   coupler.fillFluidSources(particles, fields);                   // force density, K, u_p for the fluid
+//   coupler.momentumBalanceError();                                // Newton 3: ~1e-16 relative
 //
-// Stencils come from computeVoidFraction and are reused by the two later calls, so particles must
-// not move (or be reordered) between them. The fields of FluidView must stay alive until
-// fillFluidSources returns (the implicit part and the balance use the fluid velocity).
+// (computeVoidFraction must also run once before the first computeParticleForces.) The forces of
+// computeParticleForces are distributed with the stencils of the latest computeVoidFraction; the
+// DEM may move and reorder particles in between (matched by id). The fields of the FluidView given
+// to computeParticleForces must stay alive, unchanged, until fillFluidSources returns (the
+// implicit part and the balance use the fluid velocity).
 #include <array>
 #include <memory>
 #include <string>
@@ -67,7 +70,6 @@ struct CouplerSettings {
   double smoothingLength = 0.0;  // m; 0 = off
   bool smoothExchangeFields = false;
   double minVoidFraction = 0.1;
-  int demStepsPerFluidStep = 1;
   double minRelaxationToIntervalRatio = 10.0;
   CoarseGraining coarseGraining;
 };
@@ -79,6 +81,8 @@ class Coupler {
 
   void computeVoidFraction(const dem::ParticleSet& particles, CouplingFields& fields);
   void computeParticleForces(const FluidView& fluid, const CouplingFields& fields, dem::ParticleSet& particles);
+  void fillFluidSources(const dem::ParticleSet& particles, CouplingFields& fields);
+  /// Same, when the particle set is unchanged (same order) since computeParticleForces.
   void fillFluidSources(CouplingFields& fields);
 
   /// sum over particles of the forces exchanged with the fluid + sum over cells of the fluid
@@ -92,8 +96,9 @@ class Coupler {
   const std::vector<double>& dragCoefficients() const { return beta_; }  // beta_p per particle, kg/s
 
   /// Coupling-interval criterion for the smallest particle at slip velocity `slip` (seed 000 eq. 5.30).
-  CouplingIntervalCheck checkCouplingInterval(double demTimeStep, const dem::ParticleSet& particles,
-                                              const FluidView& fluid, double slip) const;
+  CouplingIntervalCheck checkCouplingInterval(double demTimeStep, int demStepsPerFluidStep,
+                                              const dem::ParticleSet& particles, const FluidView& fluid,
+                                              double slip) const;
 
   const CouplerSettings& settings() const { return settings_; }
   const DragLaw& dragLaw() const { return *drag_; }
@@ -109,6 +114,7 @@ class Coupler {
   void sampleFluid(const FluidView& fluid, const CouplingFields& fields, const dem::ParticleSet& particles);
   void computeForcesFromSamples(const FluidView& fluid, dem::ParticleSet& particles);
   Vec3 previousSlip(std::size_t p, std::int64_t id, const Vec3& current) const;
+  void realignToParticles(const dem::ParticleSet& particles);
   void fillGhosts(Field& f) const;
 
   CouplerSettings settings_;

@@ -33,7 +33,7 @@ TEST(Coupler, DocumentationModeListsEveryKey) {
   for (const auto& k : p.documentedKeys()) paths.push_back(k.path);
   for (const char* key : {"coupling.model", "coupling.drag_law", "coupling.void_fraction", "coupling.interpolation",
                           "coupling.exchange", "coupling.smoothing_length", "coupling.min_void_fraction",
-                          "coupling.dem_steps_per_fluid_step", "coupling.coarse_grain_factor",
+                          "coupling.coarse_grain_factor",
                           "coupling.kernel_radius_cells", "coupling.samples_per_diameter",
                           "coupling.forces.virtual_mass", "coupling.forces.fluid_torque"})
     EXPECT_NE(std::find(paths.begin(), paths.end(), key), paths.end()) << key;

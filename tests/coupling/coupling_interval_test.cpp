@@ -47,12 +47,12 @@ TEST(CouplingInterval, WarnsWhenIntervalOrDemStepIsTooLong) {
 
 TEST(CouplingInterval, CouplerChecksSmallestPrimaryParticle) {
   const gf::CartesianGrid g = gf::coupling::testing::makeGrid({4, 4, 4}, {0.01, 0.01, 0.01});
-  auto c = gf::coupling::testing::makeCoupler("  dem_steps_per_fluid_step: 100\n  coarse_grain_factor: 2\n", g);
+  auto c = gf::coupling::testing::makeCoupler("  coarse_grain_factor: 2\n", g);
   gf::dem::ParticleSet s;
   s.add(0, 0, 1e-4, kGlass, g.cellCentre(1, 1, 1));  // parcel d = 0.2 mm -> primary 0.1 mm
   s.add(1, 0, 5e-5, kGlass, g.cellCentre(2, 1, 1));  // parcel d = 0.1 mm -> primary 50 um (fastest)
   gf::coupling::testing::FluidFields fluid(g);
-  const auto check = c->checkCouplingInterval(1e-5, s, fluid.view(kAirDensity, kAirMu), 0.0);
+  const auto check = c->checkCouplingInterval(1e-5, 100, s, fluid.view(kAirDensity, kAirMu), 0.0);
   EXPECT_NEAR(check.relaxationTime, 7.6284e-2 / 4.0, 1e-4);
   EXPECT_NEAR(check.couplingInterval, 1e-3, 1e-15);
   EXPECT_TRUE(check.warning.empty());

@@ -173,3 +173,40 @@ TEST(Exchange, DistributionIsTheAdjointOfStencilInterpolation) {
         for (int a = 0; a < 3; ++a) fluidPower += fields.forceDensity[a](i, j, k) * fluid.u[a](i, j, k) * kGrid.cellVolume();
   EXPECT_NEAR(particlePower, -fluidPower, 1e-12 * std::abs(particlePower));
 }
+
+TEST(Exchange, SourcesAfterDemSubstepsFollowParticlesByIdAndKeepTheBalance) {
+  // Time-loop order: forces -> DEM substeps (particles move and are reordered) -> void fraction ->
+  // fluid sources. The forces computed before the substeps are deposited at the new positions.
+  const dem::ParticleSet base = randomParticles(400, 0.001, 0.002, {0, 0, 0}, {0.08, 0.077, 0.081});
+  FluidFields fluid(kGrid);
+  fluid.setVelocity(kGrid, swirl);
+  for (const char* exchange : {"explicit", "implicit"}) {
+    auto c = makeCoupler(std::string("  model: B\n  exchange: ") + exchange + "\n", kGrid, {true, false, false});
+    dem::ParticleSet particles = base;
+    CouplingFields fields(kGrid);
+    c->computeVoidFraction(particles, fields);
+    c->computeParticleForces(fluid.view(1.2, 1.8e-5), fields, particles);
+    Vec3 total{};
+    for (std::size_t p = 0; p < particles.size(); ++p) total += particles.externalForce[p];
+    // "DEM": reverse the order and move every particle by 3 mm in x (wrapping periodically)
+    dem::ParticleSet moved;
+    for (std::size_t q = particles.size(); q-- > 0;) {
+      Vec3 x = particles.position[q] + Vec3{0.003, 0.0, 0.0};
+      if (x.x >= 0.08) x.x -= 0.08;
+      moved.add(particles.id[q], 0, particles.radius[q], 2500.0, x, particles.velocity[q]);
+    }
+    c->computeVoidFraction(moved, fields);
+    c->fillFluidSources(moved, fields);
+    EXPECT_LT(norm(c->momentumBalanceError()), 1e-13 * c->exchangedForceScale()) << exchange;
+    // the fluid receives minus the total force computed before the substeps
+    Vec3 onFluid{};
+    for (int k = 0; k < 9; ++k)
+      for (int j = 0; j < 7; ++j)
+        for (int i = 0; i < 8; ++i)
+          for (int a = 0; a < 3; ++a)
+            onFluid[a] += (fields.forceDensity[a](i, j, k) -
+                           fields.dragCoefficient(i, j, k) * (fluid.u[a](i, j, k) - fields.particleVelocity[a](i, j, k))) *
+                          kGrid.cellVolume();
+    EXPECT_LT(norm(onFluid + total), 1e-12 * c->exchangedForceScale()) << exchange;
+  }
+}
