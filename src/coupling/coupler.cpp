@@ -227,6 +227,11 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
     throw std::logic_error("coupling: computeVoidFraction must run before computeParticleForces (particle count changed)");
   lastFluid_ = fluid;
   const ForceSwitches& w = settings_.forces;
+  for (int a = 0; a < 3; ++a) {
+    if (!fluid.velocity[a]) throw std::invalid_argument("coupling: FluidView::velocity is not set");
+    if (w.pressureGradient && !fluid.pressureGradient[a])
+      throw std::invalid_argument("coupling: FluidView::pressureGradient is not set (needed by forces.pressure_gradient)");
+  }
   if (w.saffmanMeiLift || w.magnusLift || w.fluidTorque) {
     computeVorticity(topology_, fluid.velocity, vorticity_);
     for (auto& f : vorticity_) fillGhosts(f);

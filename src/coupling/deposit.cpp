@@ -24,9 +24,12 @@ void depositToFields(const ParticleStencils& stencils, const double* values, int
     return;
   }
   std::vector<std::vector<double>> buffers(threads);
+  int team = 1;
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num();
+#pragma omp single
+    team = omp_get_num_threads();  // implicit barrier: every member sees it
     std::vector<double>& buf = buffers[t];
     buf.assign(cells * channels, 0.0);
 #pragma omp for schedule(static)
@@ -43,7 +46,7 @@ void depositToFields(const ParticleStencils& stencils, const double* values, int
     for (std::int64_t c = 0; c < static_cast<std::int64_t>(cells); ++c)
       for (int ch = 0; ch < channels; ++ch) {
         double sum = 0.0;
-        for (int tt = 0; tt < threads; ++tt) sum += buffers[tt][c * channels + ch];
+        for (int tt = 0; tt < team; ++tt) sum += buffers[tt][c * channels + ch];
         fields[ch]->data()[c] = sum;
       }
   }
