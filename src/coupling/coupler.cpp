@@ -291,10 +291,19 @@ void Coupler::fillFluidSources(const dem::ParticleSet& particles, CouplingFields
 }
 
 void Coupler::fillFluidSources(CouplingFields& fields) {
-  const std::size_t n = stencils_.size();
-  if (!forcesReady_ || dragForce_.size() != n)
+  if (!forcesReady_ || dragForce_.size() != stencils_.size())
     throw std::logic_error("coupling: computeParticleForces must run before fillFluidSources (same particle set)");
   const bool implicit = settings_.exchange == ExchangeScheme::SemiImplicit;
+  depositExchange(fields, implicit);
+  if (settings_.smoothExchangeFields && settings_.smoothingLength > 0.0) smoothExchange(fields, implicit);
+  for (auto& f : fields.forceDensity) fillGhosts(f);
+  fillGhosts(fields.dragCoefficient);
+  for (auto& f : fields.particleVelocity) fillGhosts(f);
+  updateMomentumBalance(fields, implicit);
+}
+
+void Coupler::depositExchange(CouplingFields& fields, bool implicit) {
+  const std::size_t n = stencils_.size();
   // channels: 0-2 explicit force on the fluid; implicit adds 3: beta, 4-6: beta (u_p - u_f@p)
   const int channels = implicit ? 7 : 3;
   std::vector<double> values(n * channels);
@@ -329,34 +338,35 @@ void Coupler::fillFluidSources(CouplingFields& fields) {
         for (int a = 0; a < 3; ++a)
           fields.particleVelocity[a](i, j, k) = kv > 0.0 ? (*u[a])(i, j, k) + scratch_[4 + a](i, j, k) / kv : 0.0;
       }
-  if (settings_.smoothExchangeFields && settings_.smoothingLength > 0.0) {
-    for (auto& f : fields.forceDensity) smoothField(topology_, settings_.smoothingLength, f);
-    if (implicit) {  // smooth K and K u_p (momentum-conserving), then divide
-      Field& k = fields.dragCoefficient;
-      for (int a = 0; a < 3; ++a) {
-        Field& up = fields.particleVelocity[a];
-        for (std::size_t q = 0; q < up.data().size(); ++q) up.data()[q] *= k.data()[q];
-        smoothField(topology_, settings_.smoothingLength, up);
-      }
-      smoothField(topology_, settings_.smoothingLength, k);
-      for (int a = 0; a < 3; ++a) {
-        Field& up = fields.particleVelocity[a];
-        for (std::size_t q = 0; q < up.data().size(); ++q) up.data()[q] = k.data()[q] > 0.0 ? up.data()[q] / k.data()[q] : 0.0;
-      }
-    }
-  }
-  for (auto& f : fields.forceDensity) fillGhosts(f);
-  fillGhosts(fields.dragCoefficient);
-  for (auto& f : fields.particleVelocity) fillGhosts(f);
+}
 
+void Coupler::smoothExchange(CouplingFields& fields, bool implicit) const {
+  const double l = settings_.smoothingLength;
+  for (auto& f : fields.forceDensity) smoothField(topology_, l, f);
+  if (!implicit) return;
+  // smooth K and K u_p (momentum-conserving), then divide
+  Field& k = fields.dragCoefficient;
+  for (auto& up : fields.particleVelocity) {
+    for (std::size_t q = 0; q < up.data().size(); ++q) up.data()[q] *= k.data()[q];
+    smoothField(topology_, l, up);
+  }
+  smoothField(topology_, l, k);
+  for (auto& up : fields.particleVelocity)
+    for (std::size_t q = 0; q < up.data().size(); ++q) up.data()[q] = k.data()[q] > 0.0 ? up.data()[q] / k.data()[q] : 0.0;
+}
+
+void Coupler::updateMomentumBalance(const CouplingFields& fields, bool implicit) {
   // Newton's third law: particles' exchanged forces + fluid sources (explicit - K (u - u_p)) = 0.
   Vec3 onParticles{}, onFluid{};
   exchangedForceScale_ = 0.0;
-  for (std::size_t p = 0; p < n; ++p) {
+  for (std::size_t p = 0; p < dragForce_.size(); ++p) {
     const Vec3 f = dragForce_[p] + otherExchangedForce_[p];
     onParticles += f;
     exchangedForceScale_ += norm(f);
   }
+  const auto& c = topology_.grid.cells;
+  const double cellVolume = topology_.grid.cellVolume();
+  const Field* const* u = lastFluid_.velocity;
   for (int k = 0; k < c[2]; ++k)
     for (int j = 0; j < c[1]; ++j)
       for (int i = 0; i < c[0]; ++i)

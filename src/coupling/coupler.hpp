@@ -115,6 +115,9 @@ class Coupler {
   void computeForcesFromSamples(const FluidView& fluid, dem::ParticleSet& particles);
   Vec3 previousSlip(std::size_t p, std::int64_t id, const Vec3& current) const;
   void realignToParticles(const dem::ParticleSet& particles);
+  void depositExchange(CouplingFields& fields, bool implicit);
+  void smoothExchange(CouplingFields& fields, bool implicit) const;
+  void updateMomentumBalance(const CouplingFields& fields, bool implicit);
   void fillGhosts(Field& f) const;
 
   CouplerSettings settings_;
