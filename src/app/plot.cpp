@@ -48,9 +48,12 @@ PlotTool findPlotTool(const std::string& repositoryHint) {
     return tool;
   }
   std::vector<std::string> pythons;
-  if (const char* env = std::getenv("GRAINFLOW_PYTHON")) pythons.emplace_back(env);
-  pythons.emplace_back("python3");
-  pythons.emplace_back("/usr/bin/python3");
+  if (const char* env = std::getenv("GRAINFLOW_PYTHON")) {
+    pythons.emplace_back(env);  // only this one when given
+  } else {
+    pythons.emplace_back("python3");
+    pythons.emplace_back("/usr/bin/python3");  // Debian's, when python3 on PATH is another (pyenv, venv)
+  }
   bool anyPython = false;
   for (const std::string& python : pythons) {
     const int status = shellStatus(shellQuote(python) + " -c 'import matplotlib' >/dev/null 2>&1");

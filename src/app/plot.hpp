@@ -18,7 +18,7 @@ struct PlotTool {
 };
 
 /// Finds tools/plot.py (GRAINFLOW_PLOT_SCRIPT, <repositoryHint>/tools, next to the executable,
-/// the source tree) and a Python with matplotlib (GRAINFLOW_PYTHON, python3, /usr/bin/python3).
+/// the source tree) and a Python with matplotlib (GRAINFLOW_PYTHON if set, else python3, /usr/bin/python3).
 PlotTool findPlotTool(const std::string& repositoryHint = "");
 
 /// Runs the script with the given arguments; returns its exit status (0 = success).

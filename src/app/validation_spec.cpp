@@ -423,7 +423,7 @@ std::string applyOverrides(const std::string& caseText, const std::vector<Overri
           node.reset(child);
         }
       } else {
-        if (!node.IsMap() && !node.IsNull())
+        if (node.IsDefined() && !node.IsMap() && !node.IsNull())
           throw CaseError(FileLocation{origin, 0, 0}, o.path, fmt::format("'{}' below a value that is not a map", step.key), "a path through maps");
         if (last) {
           node[step.key] = value;
