@@ -98,7 +98,7 @@ def plot_validation(spec_path):
     fig.tight_layout()
     if lines:  # the compared numbers as a caption under the axes
         height = fig.get_figheight()
-        extra = 0.16 * len(lines) + 0.1
+        extra = 0.12 * len(lines) + 0.08
         fig.set_figheight(height + extra)
         params = fig.subplotpars
         fig.subplots_adjust(bottom=(params.bottom * height + extra) / (height + extra),
