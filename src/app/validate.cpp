@@ -607,7 +607,11 @@ int runValidate(const ValidateOptions& options) {
     std::fflush(stdout);
     if (failures[p.item][p.run].empty())
       for (std::size_t q = 0; q < item.quantities.size(); ++q)
-        extracted[p.item][q][p.run] = extract(item.quantities[q], p.outputDirectory);
+        try {
+          extracted[p.item][q][p.run] = extract(item.quantities[q], p.outputDirectory);
+        } catch (const std::exception& e) {  // unreadable CSV, empty series: this comparison fails, the others go on
+          extracted[p.item][q][p.run].problem = e.what();
+        }
   }
 
   // Compare, print, write results and plots.
