@@ -85,6 +85,21 @@ TEST(ValidateCli, FailingComparisonGivesNonZeroExitAndFailRow) {
   EXPECT_NE(r.output.find("0 of 1 comparison(s) passed"), std::string::npos) << r.output;
 }
 
+TEST(ValidateCli, DivergedRunIsAFailedComparisonAndTheOthersStillRun) {
+  TempDir dir;
+  writeItem(dir, "good", itemYaml("{relative: 1.0e-3}"));
+  writeItem(dir, "lost", itemYaml("{relative: 1.0e-3}"));
+  // The sphere falls out of a domain that ends 1 cm below it: the run diverges ("left the domain").
+  std::string lostCase = kCase;
+  lostCase.replace(lostCase.find("min: [0, 0, 0]"), 14, "min: [0, 0, 0.49]");
+  dir.write("validation/lost/case.yaml", lostCase);
+  const auto r = grainflow("validate --threads 1 --no-plots --no-docs --dir " + dir.file("validation") + " --output " + dir.file("out"));
+  EXPECT_EQ(r.exitCode, gf::app::kExitValidationFailed) << r.output;
+  EXPECT_NE(r.output.find("DIVERGED"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("left the domain"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 of 2 comparison(s) passed"), std::string::npos) << r.output;
+}
+
 TEST(ValidateCli, FullModeWritesTheReportWithProvenance) {
   TempDir dir;
   writeItem(dir, "tiny", itemYaml("{relative: 1.0e-3}"));
