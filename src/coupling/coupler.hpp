@@ -113,7 +113,7 @@ class Coupler {
   template <InterpolationMode Mode>
   void sampleFluid(const FluidView& fluid, const CouplingFields& fields, const dem::ParticleSet& particles);
   void computeForcesFromSamples(const FluidView& fluid, dem::ParticleSet& particles);
-  Vec3 previousSlip(std::size_t p, std::int64_t id, const Vec3& current) const;
+  void alignPreviousSlip(const dem::ParticleSet& particles);
   void realignToParticles(const dem::ParticleSet& particles);
   void depositExchange(CouplingFields& fields, bool implicit);
   void smoothExchange(CouplingFields& fields, bool implicit) const;
