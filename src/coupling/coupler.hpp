@@ -94,6 +94,9 @@ class Coupler {
   double depositedVolume() const { return depositedVolume_; }   // sum (1 - eps) V_c before clipping, m^3
   double clippedVolume() const { return clippedVolume_; }       // volume lost to min_void_fraction, m^3
   const std::vector<double>& dragCoefficients() const { return beta_; }  // beta_p per particle, kg/s
+  /// Interpolated fluid velocity per particle at the last computeParticleForces (particle order of
+  /// that call), m/s; with dragCoefficients() for a semi-implicit DEM update (implicit_drag.hpp).
+  const std::vector<Vec3>& fluidVelocityAtParticles() const { return fluidVelocityAtParticle_; }
 
   /// Coupling-interval criterion for the smallest particle at slip velocity `slip` (seed 000 eq. 5.30).
   CouplingIntervalCheck checkCouplingInterval(double demTimeStep, int demStepsPerFluidStep,
