@@ -16,11 +16,6 @@ namespace {
 
 CouplerSettings readSettings(Params& s) {
   CouplerSettings c;
-  c.model = s.choice({"model", "-", "A: fluid sees -eps grad p, gets drag (+lift, virtual mass) back; "
-                                    "B: fluid sees -grad p, gets all fluid-particle forces back (seed 000, 001)"},
-                     {"A", "B"}, "A") == "A"
-                ? ExchangeModel::A
-                : ExchangeModel::B;
   const std::string interp = s.choice({"interpolation", "-", "fluid quantities at particles: cell value, trilinear, "
                                                              "or the void-fraction stencil"},
                                       {"cell", "trilinear", "stencil"}, "trilinear");
@@ -65,10 +60,12 @@ CouplerSettings readSettings(Params& s) {
 
 }  // namespace
 
-Coupler::Coupler(Params& root, const CartesianGrid& grid, const std::array<bool, 3>& periodic, const Vec3& gravity)
+Coupler::Coupler(Params& root, const CartesianGrid& grid, const std::array<bool, 3>& periodic, const Vec3& gravity,
+                 ExchangeModel model)
     : topology_{grid, periodic}, gravity_(gravity) {
   Params s = root.section({"coupling", "", "unresolved CFD-DEM coupling (docs/coupling.md)"});
   settings_ = readSettings(s);
+  settings_.model = model;
   drag_ = Registry<DragLaw>::instance().create(s, {"drag_law", "-", "drag law (docs/coupling.md)"}, "di_felice");
   scheme_ = Registry<VoidFractionScheme>::instance().create(
       s, {"void_fraction", "-", "void-fraction scheme, also the kernel that distributes forces"}, "divided");

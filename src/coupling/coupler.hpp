@@ -61,7 +61,7 @@ struct ForceSwitches {
 };
 
 struct CouplerSettings {
-  ExchangeModel model = ExchangeModel::A;
+  ExchangeModel model = ExchangeModel::A;  // from the fluid solver (fluid.model), not a coupling key
   std::string dragLaw = "di_felice";
   std::string voidFraction = "divided";
   InterpolationMode interpolation = InterpolationMode::Trilinear;
@@ -76,8 +76,11 @@ struct CouplerSettings {
 
 class Coupler {
  public:
-  /// Reads section `coupling` of the case. `periodic` as the Domain's, `gravity` for buoyancy.
-  Coupler(Params& root, const CartesianGrid& grid, const std::array<bool, 3>& periodic, const Vec3& gravity);
+  /// Reads section `coupling` of the case. `periodic` as the Domain's, `gravity` for buoyancy,
+  /// `model` the fluid's momentum form (fluid.model: A -> -eps grad p, B -> -grad p), which decides
+  /// which forces go back to the fluid.
+  Coupler(Params& root, const CartesianGrid& grid, const std::array<bool, 3>& periodic, const Vec3& gravity,
+          ExchangeModel model = ExchangeModel::A);
 
   void computeVoidFraction(const dem::ParticleSet& particles, CouplingFields& fields);
   void computeParticleForces(const FluidView& fluid, const CouplingFields& fields, dem::ParticleSet& particles);

@@ -34,7 +34,7 @@ TEST(Coupler, DocumentationModeListsEveryKey) {
   Coupler c(p, g, {false, false, false}, {0, 0, -9.81});
   std::vector<std::string> paths;
   for (const auto& k : p.documentedKeys()) paths.push_back(k.path);
-  for (const char* key : {"coupling.model", "coupling.drag_law", "coupling.void_fraction", "coupling.interpolation",
+  for (const char* key : {"coupling.drag_law", "coupling.void_fraction", "coupling.interpolation",
                           "coupling.exchange", "coupling.smoothing_length", "coupling.min_void_fraction",
                           "coupling.coarse_grain_factor",
                           "coupling.kernel_radius_cells", "coupling.samples_per_diameter",

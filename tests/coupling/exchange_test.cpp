@@ -67,10 +67,11 @@ TEST(Exchange, NewtonsThirdLawHoldsToRoundOffForEveryConfiguration) {
       for (const char* model : {"A", "B"})
         for (const char* exchange : {"explicit", "implicit"}) {
           const std::string yaml = std::string("  void_fraction: ") + scheme + "\n  interpolation: " + interp +
-                                   "\n  model: " + model + "\n  exchange: " + exchange +
+                                   "\n  exchange: " + exchange +
                                    "\n  drag_law: beetstra\n  forces:\n    virtual_mass: true\n"
                                    "    saffman_mei_lift: true\n    magnus_lift: true\n    fluid_torque: true\n";
-          auto c = makeCoupler(yaml, kGrid, {true, false, false});
+          auto c = makeCoupler(yaml, kGrid, {true, false, false}, {0.0, 0.0, -9.81},
+                               std::string(model) == "A" ? ExchangeModel::A : ExchangeModel::B);
           dem::ParticleSet particles = base;
           CouplingFields fields(kGrid);
           c->computeVoidFraction(particles, fields);
@@ -128,7 +129,8 @@ TEST(Exchange, ModelAKeepsPressureForceOnParticlesOnlyModelBGivesItBack) {
   for (const char* model : {"A", "B"}) {
     dem::ParticleSet particles = base;
     for (auto& v : particles.velocity) v = {};
-    auto c = makeCoupler(std::string("  model: ") + model + "\n  exchange: explicit\n", kGrid);
+    auto c = makeCoupler("  exchange: explicit\n", kGrid, {false, false, false}, {0.0, 0.0, -9.81},
+                         std::string(model) == "A" ? ExchangeModel::A : ExchangeModel::B);
     CouplingFields fields(kGrid);
     c->computeVoidFraction(particles, fields);
     c->computeParticleForces(fluid.view(1000.0, 1e-3), fields, particles);
@@ -182,7 +184,8 @@ TEST(Exchange, SourcesAfterDemSubstepsFollowParticlesByIdAndKeepTheBalance) {
   FluidFields fluid(kGrid);
   fluid.setVelocity(kGrid, swirl);
   for (const char* exchange : {"explicit", "implicit"}) {
-    auto c = makeCoupler(std::string("  model: B\n  exchange: ") + exchange + "\n", kGrid, {true, false, false});
+    auto c = makeCoupler(std::string("  exchange: ") + exchange + "\n", kGrid, {true, false, false}, {0.0, 0.0, -9.81},
+                         ExchangeModel::B);
     dem::ParticleSet particles = base;
     CouplingFields fields(kGrid);
     c->computeVoidFraction(particles, fields);
