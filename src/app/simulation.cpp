@@ -109,7 +109,9 @@ Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptio
   if (root.documenting() || root.has("fluid")) fluid_ = std::make_unique<fluid::Solver>(root, domain_, settings_.gravity);
   if (root.documenting() || root.has("coupling")) {
     if (!fluid_) root.fail("coupling", "a 'coupling' section without a 'fluid' section", "a 'fluid' section as well");
-    coupler_ = std::make_unique<coupling::Coupler>(root, fluid_->grid(), domain_.periodic, settings_.gravity);
+    const auto model =
+        fluid_->model() == fluid::MomentumModel::A ? coupling::ExchangeModel::A : coupling::ExchangeModel::B;
+    coupler_ = std::make_unique<coupling::Coupler>(root, fluid_->grid(), domain_.periodic, settings_.gravity, model);
     if (!root.documenting()) initialiseCoupling();
   }
 
@@ -138,6 +140,11 @@ void Simulation::initialiseCoupling() {
   CouplingFields& fields = fluid_->couplingFields();
   coupler_->computeVoidFraction(dem_->particles(), fields);
   fields.voidFractionOld = fields.voidFraction;
+  if (dem_->particles().size() == 0) return;
+  // Coupling-interval criterion (seed 000 eq. 5.30, tables 5.4/5.5), in the Stokes limit (slip 0).
+  const coupling::CouplingIntervalCheck check = coupler_->checkCouplingInterval(
+      settings_.demStep, settings_.demStepsPerCouplingStep, dem_->particles(), fluidView(), 0.0);
+  if (!check.warning.empty()) spdlog::warn("{}", check.warning);
 }
 
 coupling::FluidView Simulation::fluidView() {
