@@ -95,20 +95,23 @@ std::string formatVec(const Vec3& v) { return fmt::format("[{:g}, {:g}, {:g}]", 
 struct Params::Section {
   YAML::Node node;     // the map (undefined for an absent section)
   std::string prefix;  // dotted path of this section ("" for the root)
-  std::set<std::string> queried;
+  std::set<std::string>* queried = nullptr;  // shared by every reader of the same map
 };
 
 struct Params::Shared {
   std::string file;
   bool documenting = false;
   std::vector<std::shared_ptr<Section>> sections;  // every map visited, in order
+  std::map<std::string, std::set<std::string>> queriedByPrefix;  // keys asked for, per section path
   std::vector<ResolvedKey> resolved;
   std::vector<KeyDoc> docs;
   std::set<std::string> documentedPaths;
+  std::string documentationContext;  // e.g. "type = particle_probe" while a model documents its keys
 };
 
 Params::Params(std::shared_ptr<Shared> shared, std::shared_ptr<Section> section)
     : shared_(std::move(shared)), section_(std::move(section)) {
+  section_->queried = &shared_->queriedByPrefix[section_->prefix];
   shared_->sections.push_back(section_);
 }
 Params::~Params() = default;
@@ -160,6 +163,7 @@ Params Params::documentation() {
 // ---------------------------------------------------------------- helpers
 
 bool Params::documenting() const { return shared_->documenting; }
+void Params::setDocumentationContext(const std::string& context) { shared_->documentationContext = context; }
 const std::string& Params::fileName() const { return shared_->file; }
 
 std::string Params::path(std::string_view key) const {
@@ -198,14 +202,15 @@ void Params::fail(std::string_view key, const std::string& found, const std::str
   throw CaseError(location(key), path(key), found, expected);
 }
 
-void Params::markQueried(std::string_view key) const { section_->queried.insert(std::string(key)); }
+void Params::markQueried(std::string_view key) const { section_->queried->insert(std::string(key)); }
 
 void Params::document(const Key& k, std::string type, std::string defaultValue, std::string allowed) const {
   // In documentation mode, list items are all documented under "name[]".
   const std::string p = path(k.name);
   if (!shared_->documentedPaths.insert(p).second) return;
-  shared_->docs.push_back({p, std::move(type), std::move(defaultValue), std::string(k.unit), std::move(allowed),
-                           std::string(k.help)});
+  std::string help(k.help);
+  if (!shared_->documentationContext.empty()) help = "(" + shared_->documentationContext + ") " + help;
+  shared_->docs.push_back({p, std::move(type), std::move(defaultValue), std::string(k.unit), std::move(allowed), help});
 }
 
 void Params::record(const Key& k, std::string value, bool fromDefault) const {
@@ -495,7 +500,7 @@ Params Params::childParams(const Key& k, const YAML::Node& node, const std::stri
 Params Params::section(const Key& k) {
   markQueried(k.name);
   if (documenting()) {
-    document(k, "section", "", "map");
+    document(k, "section", "optional", "map");
     return childParams(k, YAML::Node(), path(k.name), false);
   }
   const YAML::Node* n = find(k.name);
@@ -505,6 +510,7 @@ Params Params::section(const Key& k) {
 }
 
 Params Params::requiredSection(const Key& k) {
+  if (documenting()) document(k, "section", "required", "map");
   if (!documenting() && !has(k.name)) {
     markQueried(k.name);
     fail(k.name, "nothing", "a map of keys (this section is required)");
@@ -541,8 +547,8 @@ void Params::checkUnknownKeys() const {
     if (!map.IsDefined() || !map.IsMap()) continue;
     for (auto it = map.begin(); it != map.end(); ++it) {
       const std::string key = it->first.Scalar();
-      if (section->queried.count(key)) continue;
-      std::vector<std::string> valid(section->queried.begin(), section->queried.end());
+      if (section->queried->count(key)) continue;
+      std::vector<std::string> valid(section->queried->begin(), section->queried->end());
       const std::string suggestion = closestMatch(key, valid);
       const std::string where = section->prefix.empty() ? key : section->prefix + "." + key;
       throw CaseError(locationOf(shared_->file, it->first), where,

@@ -50,19 +50,23 @@ class Registry {
 
   /// Reads `modelKey` from `section` (one of the registered names) and builds that model
   /// from the same section. In documentation mode every registered model documents its keys.
-  std::unique_ptr<Interface> create(Params& section, const Key& modelKey, const std::string& defaultName = "") {
+  std::unique_ptr<Interface> create(Params& section, const Key& modelKey, const std::string& defaultName = "",
+                                    std::string* chosenName = nullptr) {
     const std::vector<std::string> valid = names();
     if (section.documenting()) {
       section.choice(modelKey, valid, defaultName);
       std::unique_ptr<Interface> first;
       for (const auto& [name, entry] : entries_) {
+        section.setDocumentationContext(std::string(modelKey.name) + " = " + name);
         auto made = entry.make(section);
+        section.setDocumentationContext("");
         if (!first) first = std::move(made);
       }
       return first;
     }
     const std::string name =
         defaultName.empty() ? section.choice(modelKey, valid) : section.choice(modelKey, valid, defaultName);
+    if (chosenName != nullptr) *chosenName = name;
     return entries_.at(name).make(section);
   }
 

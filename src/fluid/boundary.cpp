@@ -1,0 +1,199 @@
+#include "fluid/boundary.hpp"
+
+#include <fmt/format.h>
+
+namespace gf::fluid {
+
+namespace {
+
+constexpr const char* kSideNames[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+
+/// Calls body(p, q, base, stride) for every grid line along `axis` (all ghost rows of the other
+/// two axes included); base is the flat index of point 0 on the line.
+template <class Body>
+void forEachLine(const Field& f, int axis, Body&& body) {
+  const int g = f.grid().ghosts;
+  const int b1 = (axis + 1) % 3, b2 = (axis + 2) % 3;
+  const auto& pts = f.points();
+  for (int q = -g; q < pts[b2] + g; ++q)
+    for (int p = -g; p < pts[b1] + g; ++p) {
+      int idx[3];
+      idx[axis] = 0;
+      idx[b1] = p;
+      idx[b2] = q;
+      body(p, q, f.index(idx[0], idx[1], idx[2]), f.stride(axis));
+    }
+}
+
+}  // namespace
+
+Boundaries Boundaries::read(Params& fluid, const std::array<bool, 3>& periodic, bool twoD) {
+  Boundaries bc;
+  Params sec = fluid.section({"boundaries", "-", "boundary condition per box face (x_min, x_max, y_min, ...)"});
+  for (int s = 0; s < 6; ++s) {
+    const int axis = s / 2;
+    Params p = sec.section({kSideNames[s], "-", "boundary condition on this face"});
+    BoundarySide& b = bc.side[s];
+    const std::string type =
+        p.choice({"type", "-", "wall | slip | inlet | pressure_outlet | outflow (zero gradient) | periodic"},
+                 {"wall", "slip", "inlet", "pressure_outlet", "outflow", "periodic"},
+                 periodic[axis] ? "periodic" : "wall");
+    b.velocity = p.vec3({"velocity", "m/s", "wall velocity (tangential part used) or inlet velocity (peak if parabolic)"},
+                        Vec3{});
+    b.parabolic = p.choice({"profile", "-", "inlet profile: uniform or parabolic (peak = velocity)"},
+                           {"uniform", "parabolic"}, "uniform") == "parabolic";
+    b.pressure = p.real({"pressure", "Pa", "static pressure at a pressure_outlet"}, 0.0);
+    b.scalarFixed = p.choice({"scalar", "-", "passive scalar condition: zero_gradient or fixed"},
+                             {"zero_gradient", "fixed"}, "zero_gradient") == "fixed";
+    b.scalarValue = p.real({"scalar_value", "-", "passive scalar value where scalar: fixed"}, 0.0);
+    if (type == "wall") b.type = BoundaryType::Wall;
+    else if (type == "slip") b.type = BoundaryType::Slip;
+    else if (type == "inlet") b.type = BoundaryType::Inlet;
+    else if (type == "pressure_outlet") b.type = BoundaryType::PressureOutlet;
+    else if (type == "outflow") b.type = BoundaryType::Outflow;
+    else b.type = BoundaryType::Periodic;
+    if (!p.documenting() && !(twoD && axis == 2) && (b.type == BoundaryType::Periodic) != periodic[axis])
+      p.fail("type", type,
+             periodic[axis] ? "periodic (the domain is periodic along this axis)"
+                            : "a non-periodic condition (domain.periodic is 0 along this axis)");
+    if (twoD && axis == 2) b.type = BoundaryType::Periodic;
+  }
+  return bc;
+}
+
+double inletNormalVelocity(const Boundaries& bc, int axis, int side, const CartesianGrid& g, const Vec3& x) {
+  const BoundarySide& s = bc.at(axis, side);
+  double u = s.velocity[axis];
+  if (!s.parabolic) return u;
+  for (int b = 0; b < 3; ++b) {
+    if (b == axis || bc.periodic(b)) continue;
+    const double xi = (x[b] - g.origin[b]) / (g.cells[b] * g.spacing[b]);
+    u *= 4.0 * xi * (1.0 - xi);
+  }
+  return u;
+}
+
+void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode) {
+  const CartesianGrid& grid = u.grid();
+  const int g = grid.ghosts;
+  double* d = u.data().data();
+  const bool full = mode == GhostMode::Full;
+  for (int a = 0; a < 3; ++a) {
+    const int n = grid.cells[a];
+    const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+    if (bc.periodic(a)) {
+      if (c == a) {
+        forEachLine(u, a, [&](int, int, std::size_t base, std::ptrdiff_t st) {
+          d[base + n * st] = d[base];
+          for (int m = 1; m <= g; ++m) {
+            d[base - m * st] = d[base + (n - m) * st];
+            d[base + (n + m) * st] = d[base + m * st];
+          }
+        });
+      } else {
+        forEachLine(u, a, [&](int, int, std::size_t base, std::ptrdiff_t st) {
+          for (int m = 1; m <= g; ++m) {
+            d[base - m * st] = d[base + (n - m) * st];
+            d[base + (n - 1 + m) * st] = d[base + (m - 1) * st];
+          }
+        });
+      }
+      continue;
+    }
+    for (int s = 0; s < 2; ++s) {
+      const BoundarySide& side = bc.at(a, s);
+      if (c == a) {
+        // Normal component: boundary face at 0 or n; k counts inwards from it.
+        forEachLine(u, a, [&](int p, int q, std::size_t base, std::ptrdiff_t st) {
+          auto at = [&](int k) -> double& { return d[base + (s == 0 ? k : n - k) * st]; };
+          switch (side.type) {
+            case BoundaryType::Wall:
+            case BoundaryType::Slip:
+              at(0) = 0.0;
+              for (int m = 1; m <= g; ++m) at(-m) = -at(m);
+              break;
+            case BoundaryType::Inlet: {
+              double value = 0.0;
+              if (full) {
+                Vec3 x;
+                x[a] = grid.origin[a] + (s == 0 ? 0 : n) * grid.spacing[a];
+                x[b1] = grid.origin[b1] + (p + 0.5) * grid.spacing[b1];
+                x[b2] = grid.origin[b2] + (q + 0.5) * grid.spacing[b2];
+                value = inletNormalVelocity(bc, a, s, grid, x);
+              }
+              at(0) = value;
+              for (int m = 1; m <= g; ++m) at(-m) = value;
+              break;
+            }
+            default:  // outlets: the boundary face is set by the solver; ghosts copy it
+              if (!full) at(0) = 0.0;
+              for (int m = 1; m <= g; ++m) at(-m) = at(0);
+              break;
+          }
+        });
+      } else {
+        // Tangential component: cell rows 0..n-1; k = 0 is the row next to the boundary.
+        forEachLine(u, a, [&](int, int, std::size_t base, std::ptrdiff_t st) {
+          auto at = [&](int k) -> double& { return d[base + (s == 0 ? k : n - 1 - k) * st]; };
+          switch (side.type) {
+            case BoundaryType::Wall:
+            case BoundaryType::Inlet: {
+              const double uw = full ? side.velocity[c] : 0.0;
+              // Quadratic through wall value, rows 0 and 1: exact for parabolic profiles.
+              at(-1) = n >= 2 ? (8.0 * uw - 6.0 * at(0) + at(1)) / 3.0 : 2.0 * uw - at(0);
+              at(-2) = n >= 2 ? 2.0 * uw - at(1) : at(-1);
+              break;
+            }
+            case BoundaryType::Slip:
+              for (int m = 1; m <= g; ++m) at(-m) = at(n >= m ? m - 1 : 0);
+              break;
+            default:
+              for (int m = 1; m <= g; ++m) at(-m) = at(0);
+              break;
+          }
+        });
+      }
+    }
+  }
+}
+
+void fillCellGhosts(Field& f, const Boundaries& bc, CellGhostKind kind) {
+  const CartesianGrid& grid = f.grid();
+  const int g = grid.ghosts;
+  double* d = f.data().data();
+  for (int a = 0; a < 3; ++a) {
+    const int n = grid.cells[a];
+    if (bc.periodic(a)) {
+      forEachLine(f, a, [&](int, int, std::size_t base, std::ptrdiff_t st) {
+        for (int m = 1; m <= g; ++m) {
+          d[base - m * st] = d[base + (((n - m) % n + n) % n) * st];
+          d[base + (n - 1 + m) * st] = d[base + ((m - 1) % n) * st];
+        }
+      });
+      continue;
+    }
+    for (int s = 0; s < 2; ++s) {
+      const BoundarySide& side = bc.at(a, s);
+      bool dirichlet = false;
+      double value = 0.0;
+      if (kind == CellGhostKind::Pressure && side.type == BoundaryType::PressureOutlet) {
+        dirichlet = true;
+        value = side.pressure;
+      } else if (kind == CellGhostKind::PressureIncrement && side.type == BoundaryType::PressureOutlet) {
+        dirichlet = true;
+      } else if (kind == CellGhostKind::Scalar && side.scalarFixed) {
+        dirichlet = true;
+        value = side.scalarValue;
+      }
+      forEachLine(f, a, [&](int, int, std::size_t base, std::ptrdiff_t st) {
+        auto at = [&](int k) -> double& { return d[base + (s == 0 ? k : n - 1 - k) * st]; };
+        for (int m = 1; m <= g; ++m) {
+          const double mirror = at(std::min(m - 1, n - 1));
+          at(-m) = dirichlet ? 2.0 * value - mirror : mirror;
+        }
+      });
+    }
+  }
+}
+
+}  // namespace gf::fluid

@@ -1,0 +1,50 @@
+#pragma once
+// Boundary conditions of the fluid solver, one per box face (x_min, x_max, y_min, ...), and the
+// ghost-layer filling that applies them to staggered velocity and cell-centred fields.
+#include <array>
+#include <string>
+
+#include "core/grid.hpp"
+#include "core/params.hpp"
+
+namespace gf::fluid {
+
+enum class BoundaryType { Wall, Slip, Inlet, PressureOutlet, Outflow, Periodic };
+
+struct BoundarySide {
+  BoundaryType type = BoundaryType::Wall;
+  Vec3 velocity;           // wall velocity (tangential) or inlet velocity, m/s
+  bool parabolic = false;  // inlet: parabolic profile with peak `velocity` instead of uniform
+  double pressure = 0.0;   // pressure outlet, Pa
+  bool scalarFixed = false;
+  double scalarValue = 0.0;  // Dirichlet value of the passive scalar where scalarFixed
+};
+
+inline int sideIndex(int axis, int side) { return 2 * axis + side; }
+inline bool isOutlet(BoundaryType t) { return t == BoundaryType::PressureOutlet || t == BoundaryType::Outflow; }
+
+struct Boundaries {
+  std::array<BoundarySide, 6> side;
+  const BoundarySide& at(int axis, int s) const { return side[sideIndex(axis, s)]; }
+  bool periodic(int axis) const { return side[sideIndex(axis, 0)].type == BoundaryType::Periodic; }
+
+  /// Reads section 'boundaries' (x_min ... z_max); periodic directions come from the domain.
+  /// In 2D (one cell in z) the z sides are periodic whatever the file says.
+  static Boundaries read(Params& fluid, const std::array<bool, 3>& periodic, bool twoD);
+};
+
+/// How ghosts are filled: with the boundary values, or with zero boundary data (the linear,
+/// homogeneous part of the condition, used for increments inside Krylov solvers).
+enum class GhostMode { Full, Homogeneous };
+
+/// Normal velocity at an inlet face point (profile evaluated at the face centre).
+double inletNormalVelocity(const Boundaries& bc, int axis, int side, const CartesianGrid& g, const Vec3& faceCentre);
+
+/// Ghosts (and prescribed boundary faces) of velocity component `c` (face field along c).
+void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode);
+
+/// Kinds of cell-centred ghost fill.
+enum class CellGhostKind { ZeroGradient, Pressure, PressureIncrement, Scalar };
+void fillCellGhosts(Field& f, const Boundaries& bc, CellGhostKind kind);
+
+}  // namespace gf::fluid

@@ -1,0 +1,66 @@
+#pragma once
+// Loops of the fluid solver: gf::parallelFor / gf::parallelSum for large ranges, a plain loop
+// for small ones (2D and coarse multigrid levels), where starting an OpenMP team costs more
+// than the work -- and much more on an oversubscribed machine. Results are deterministic for a
+// given thread count either way.
+#include <cstdint>
+
+#include "core/parallel.hpp"
+
+namespace gf::fluid {
+
+inline constexpr std::int64_t kSerialBelow = 1024;           // grid lines
+inline constexpr std::int64_t kSerialElementsBelow = 65536;  // single values
+
+template <class Body>
+inline void parallelFor(std::int64_t n, Body&& body) {
+  if (n < kSerialBelow || gf::threadCount() == 1) {
+    for (std::int64_t i = 0; i < n; ++i) body(i);
+  } else {
+    gf::parallelFor(n, body);
+  }
+}
+
+template <class Body>
+inline double parallelSum(std::int64_t n, Body&& body) {
+  if (n < kSerialBelow || gf::threadCount() == 1) {
+    double s = 0.0;
+    for (std::int64_t i = 0; i < n; ++i) s += body(i);
+    return s;
+  }
+  return gf::parallelSum(n, body);
+}
+
+/// Element-wise loops (vector updates, dot products): cheap bodies, so a larger threshold.
+template <class Body>
+inline void parallelForElements(std::int64_t n, Body&& body) {
+  if (n < kSerialElementsBelow || gf::threadCount() == 1) {
+    for (std::int64_t i = 0; i < n; ++i) body(i);
+  } else {
+    gf::parallelFor(n, body);
+  }
+}
+
+/// Sum with four interleaved partial sums (fixed order, so deterministic): breaks the add
+/// latency chain of a single accumulator.
+template <class Body>
+inline double serialSum4(std::int64_t n, Body&& body) {
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  std::int64_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    s0 += body(i);
+    s1 += body(i + 1);
+    s2 += body(i + 2);
+    s3 += body(i + 3);
+  }
+  for (; i < n; ++i) s0 += body(i);
+  return (s0 + s1) + (s2 + s3);
+}
+
+template <class Body>
+inline double parallelSumElements(std::int64_t n, Body&& body) {
+  if (n < kSerialElementsBelow || gf::threadCount() == 1) return serialSum4(n, body);
+  return gf::parallelSum(n, body);
+}
+
+}  // namespace gf::fluid

@@ -1,0 +1,283 @@
+// Momentum predictor: convection (explicit, extrapolated), BDF2 time derivative, implicit
+// viscous and drag terms solved with Jacobi-preconditioned BiCGStab per velocity component.
+#include <cmath>
+
+#include "fluid/loops.hpp"
+#include "fluid/schemes.hpp"
+#include "fluid/solver.hpp"
+
+namespace gf::fluid {
+
+namespace {
+
+/// N = div(rho eps u u_c) at the faces of component c (finite volume around the face; mass
+/// fluxes interpolated to the control-volume faces, transported value central or van Leer).
+template <bool TVD, bool UNIFORM>
+void convectionKernel(const Field u[3], const Field& eps, const std::vector<std::uint8_t>& mask, Field& out, int c,
+                      double rho, int dims) {
+  const Field& uc = u[c];
+  const CartesianGrid& g = uc.grid();
+  const auto& pts = uc.points();
+  const double* U = uc.data().data();
+  const double* E = eps.data().data();
+  double* O = out.data().data();
+  std::ptrdiff_t su[3], se[3];
+  for (int d = 0; d < 3; ++d) {
+    su[d] = uc.stride(d);
+    se[d] = eps.stride(d);
+  }
+  parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
+    const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
+    const std::size_t f0 = uc.index(0, j, k), e0 = eps.index(0, j, k);
+    std::size_t d0[3];
+    for (int d = 0; d < 3; ++d) d0[d] = u[d].index(0, j, k);
+    for (int i = 0; i < pts[0]; ++i) {
+      const std::size_t f = f0 + i;
+      if (!mask[f]) {
+        O[f] = 0.0;
+        continue;
+      }
+      const std::size_t cc = e0 + i, cm = cc - se[c];
+      double N = 0.0;
+      for (int d = 0; d < dims; ++d) {
+        double Fp, Fm;
+        if (d == c) {
+          Fp = rho * (UNIFORM ? 1.0 : E[cc]) * 0.5 * (U[f] + U[f + su[c]]);
+          Fm = rho * (UNIFORM ? 1.0 : E[cm]) * 0.5 * (U[f - su[c]] + U[f]);
+        } else {
+          const double* V = u[d].data().data();
+          const std::ptrdiff_t vc = u[d].stride(c), vd = u[d].stride(d);
+          const std::size_t idc = d0[d] + i, idm = idc - vc;
+          const double vp = 0.5 * (V[idc + vd] + V[idm + vd]);
+          const double vm = 0.5 * (V[idc] + V[idm]);
+          double ep = 1.0, em = 1.0;
+          if constexpr (!UNIFORM) {
+            ep = 0.25 * (E[cc] + E[cm] + E[cc + se[d]] + E[cm + se[d]]);
+            em = 0.25 * (E[cc] + E[cm] + E[cc - se[d]] + E[cm - se[d]]);
+          }
+          Fp = rho * ep * vp;
+          Fm = rho * em * vm;
+        }
+        const std::ptrdiff_t s = su[d];
+        const double qp = faceValue<TVD>(Fp, U[f - s], U[f], U[f + s], U[f + 2 * s]);
+        const double qm = faceValue<TVD>(Fm, U[f - 2 * s], U[f - s], U[f], U[f + s]);
+        N += (Fp * qp - Fm * qm) / g.spacing[d];
+      }
+      O[f] = N;
+    }
+  });
+}
+
+/// y = (rho gamma0 eps_f / dt + K_f) x - div(mu eps grad x) at the unknown faces of component c.
+template <bool UNIFORM>
+void helmholtzKernel(const Field& x, std::vector<double>& y, const std::vector<std::uint8_t>& mask, const Field& eps,
+                     const Field& K, int c, double mu, double timeCoeff, int dims, bool jacobiDiagonal) {
+  const CartesianGrid& g = x.grid();
+  const auto& pts = x.points();
+  const double* X = x.data().data();
+  const double* E = eps.data().data();
+  const double* Kd = K.data().data();
+  double* Y = y.data();
+  std::ptrdiff_t sx[3], se[3];
+  double w[3];
+  for (int d = 0; d < 3; ++d) {
+    sx[d] = x.stride(d);
+    se[d] = eps.stride(d);
+    w[d] = mu / (g.spacing[d] * g.spacing[d]);
+  }
+  parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
+    const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
+    const std::size_t f0 = x.index(0, j, k), e0 = eps.index(0, j, k);
+    for (int i = 0; i < pts[0]; ++i) {
+      const std::size_t f = f0 + i;
+      if (!mask[f]) continue;
+      const std::size_t cc = e0 + i, cm = cc - se[c];
+      double diag = timeCoeff;
+      if constexpr (!UNIFORM) diag = timeCoeff * 0.5 * (E[cc] + E[cm]) + 0.5 * (Kd[cc] + Kd[cm]);
+      double off = 0.0;
+      for (int d = 0; d < dims; ++d) {
+        double ep = 1.0, em = 1.0;
+        if constexpr (!UNIFORM) {
+          if (d == c) {
+            ep = E[cc];
+            em = E[cm];
+          } else {
+            ep = 0.25 * (E[cc] + E[cm] + E[cc + se[d]] + E[cm + se[d]]);
+            em = 0.25 * (E[cc] + E[cm] + E[cc - se[d]] + E[cm - se[d]]);
+          }
+        }
+        diag += w[d] * (ep + em);
+        off += w[d] * (ep * X[f + sx[d]] + em * X[f - sx[d]]);
+      }
+      Y[f] = jacobiDiagonal ? diag : diag * X[f] - off;
+    }
+  });
+}
+
+}  // namespace
+
+void Solver::computeConvection(Field out[3]) const {
+  const int dims = twoD_ ? 2 : 3;
+  for (int c = 0; c < dims; ++c) {
+    const bool tvd = scheme_ == ConvectionScheme::VanLeer;
+    if (tvd && uniformCoupling_)
+      convectionKernel<true, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, dims);
+    else if (tvd)
+      convectionKernel<true, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, dims);
+    else if (uniformCoupling_)
+      convectionKernel<false, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, dims);
+    else
+      convectionKernel<false, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, dims);
+  }
+}
+
+void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2, double e1, double e2) {
+  const Field& uc = u_[c];
+  const auto& pts = uc.points();
+  const double* U = uc.data().data();
+  const double* Uo = uOld_[c].data().data();
+  const double* N = conv_[c].data().data();
+  const double* No = convOld_[c].data().data();
+  const double* P = p_.data().data();
+  const double* E = coupling_.voidFraction.data().data();
+  const double* En = coupling_.voidFractionOld.data().data();
+  const double* Enm = epsOlder_.data().data();
+  const double* F = coupling_.forceDensity[c].data().data();
+  const double* K = coupling_.dragCoefficient.data().data();
+  const double* Up = coupling_.particleVelocity[c].data().data();
+  double* R = rhs_[c].data().data();
+  const auto& mask = unknown_[c];
+  const std::ptrdiff_t se = p_.stride(c);
+  const double invH = 1.0 / grid_.spacing[c];
+  const double rdt = rho_ / dt;
+  const double gc = gravity_[c];
+  const double drive = (driveMode_ != DrivingMode::None && driveAxis_ == c) ? drive_ : 0.0;
+  const bool modelA = model_ == MomentumModel::A;
+  parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
+    const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
+    const std::size_t f0 = uc.index(0, j, k), e0 = p_.index(0, j, k);
+    for (int i = 0; i < pts[0]; ++i) {
+      const std::size_t f = f0 + i;
+      if (!mask[f]) continue;
+      const std::size_t cc = e0 + i, cm = cc - se;
+      const double epsF = 0.5 * (E[cc] + E[cm]);
+      const double epsN = 0.5 * (En[cc] + En[cm]);
+      const double epsNm = 0.5 * (Enm[cc] + Enm[cm]);
+      const double a = modelA ? epsF : 1.0;
+      double r = rdt * (g1 * epsN * U[f] - g2 * epsNm * Uo[f]);
+      r -= e1 * N[f] - e2 * No[f];
+      r -= a * (P[cc] - P[cm]) * invH;
+      r += epsF * rho_ * gc + a * drive;
+      r += 0.5 * (F[cc] + F[cm]) + 0.5 * (K[cc] * Up[cc] + K[cm] * Up[cm]);
+      R[f] = r;
+    }
+  });
+  (void)g0;
+}
+
+void Solver::applyHelmholtz(int c, const Field& x, std::vector<double>& y, double dt, double g0) const {
+  const int dims = twoD_ ? 2 : 3;
+  const double timeCoeff = rho_ * g0 / dt;
+  if (uniformCoupling_)
+    helmholtzKernel<true>(x, y, unknown_[c], coupling_.voidFraction, coupling_.dragCoefficient, c, mu_, timeCoeff,
+                          dims, false);
+  else
+    helmholtzKernel<false>(x, y, unknown_[c], coupling_.voidFraction, coupling_.dragCoefficient, c, mu_, timeCoeff,
+                           dims, false);
+}
+
+int Solver::solveHelmholtz(int c, double dt, double g0) {
+  // Jacobi-preconditioned BiCGStab (van der Vorst 1992) on the correction of u_c. The vectors
+  // span the whole flat array (ghosts included) and are zero off the unknown faces, so every
+  // vector operation is one contiguous loop.
+  if (unknownList_[c].empty()) {
+    uOld_[c].data() = u_[c].data();
+    return 0;
+  }
+  Field& x = u_[c];
+  const auto n = static_cast<std::int64_t>(x.data().size());
+  double* X = x.data().data();
+  const double* B = rhs_[c].data().data();
+  double* r = krylov_[0].data();
+  double* rhat = krylov_[1].data();
+  double* p = krylov_[2].data();
+  double* v = krylov_[3].data();
+  double* s = krylov_[4].data();
+  double* t = krylov_[5].data();
+  double* invDiag = krylov_[6].data();
+  Field& y = precY_[c];
+  Field& z = precZ_[c];
+  double* Y = y.data().data();
+  double* Z = z.data().data();
+  const auto& mask = unknown_[c];
+  auto dot = [&](const double* a, const double* b) {
+    return parallelSumElements(n, [&](std::int64_t q) { return a[q] * b[q]; });
+  };
+  const int dims = twoD_ ? 2 : 3;
+  if (uniformCoupling_)
+    helmholtzKernel<true>(x, krylov_[6], mask, coupling_.voidFraction, coupling_.dragCoefficient, c, mu_,
+                          rho_ * g0 / dt, dims, true);
+  else
+    helmholtzKernel<false>(x, krylov_[6], mask, coupling_.voidFraction, coupling_.dragCoefficient, c, mu_,
+                           rho_ * g0 / dt, dims, true);
+  // Initial guess: u^n extrapolated in time, 2 u^n - u^{n-1} (second order).
+  double* Uo = uOld_[c].data().data();
+  double* Un = krylov_[7].data();
+  parallelForElements(n, [&](std::int64_t q) {
+    invDiag[q] = mask[q] ? 1.0 / invDiag[q] : 0.0;
+    Un[q] = X[q];
+    if (mask[q]) X[q] = 2.0 * X[q] - Uo[q];
+    Uo[q] = Un[q];  // u^{n-1} <- u^n for the next step
+  });
+  fillVelocityGhosts(x, c, bc_, GhostMode::Full);
+  applyHelmholtz(c, x, krylov_[5], dt, g0);
+  parallelForElements(n, [&](std::int64_t q) {
+    r[q] = mask[q] ? B[q] - t[q] : 0.0;
+    rhat[q] = r[q];
+    p[q] = 0.0;
+    v[q] = 0.0;
+    t[q] = 0.0;
+    s[q] = 0.0;
+  });
+  const double bnorm = std::sqrt(parallelSumElements(n, [&](std::int64_t q) { return mask[q] ? B[q] * B[q] : 0.0; }));
+  const double tol = momentumTolerance_ * (bnorm > 0.0 ? bnorm : 1.0);
+  double rnorm = std::sqrt(dot(r, r));
+  int it = 0;
+  double rho = 1.0, alpha = 1.0, omega = 1.0;
+  while (rnorm > tol && it < momentumMaxIterations_) {
+    ++it;
+    const double rhoNew = dot(rhat, r);
+    if (rhoNew == 0.0) break;
+    const double beta = (rhoNew / rho) * (alpha / omega);
+    rho = rhoNew;
+    parallelForElements(n, [&](std::int64_t q) {
+      p[q] = r[q] + beta * (p[q] - omega * v[q]);
+      Y[q] = p[q] * invDiag[q];
+    });
+    fillVelocityGhosts(y, c, bc_, GhostMode::Homogeneous);
+    applyHelmholtz(c, y, krylov_[3], dt, g0);
+    alpha = rho / dot(rhat, v);
+    parallelForElements(n, [&](std::int64_t q) { s[q] = r[q] - alpha * v[q]; });
+    const double snorm = std::sqrt(dot(s, s));
+    if (snorm <= tol) {
+      parallelForElements(n, [&](std::int64_t q) { X[q] += alpha * Y[q]; });
+      rnorm = snorm;
+      break;
+    }
+    parallelForElements(n, [&](std::int64_t q) { Z[q] = s[q] * invDiag[q]; });
+    fillVelocityGhosts(z, c, bc_, GhostMode::Homogeneous);
+    applyHelmholtz(c, z, krylov_[5], dt, g0);
+    const double tt = dot(t, t);
+    omega = tt > 0.0 ? dot(t, s) / tt : 0.0;
+    parallelForElements(n, [&](std::int64_t q) {
+      X[q] += alpha * Y[q] + omega * Z[q];
+      r[q] = s[q] - omega * t[q];
+    });
+    rnorm = std::sqrt(dot(r, r));
+    if (omega == 0.0) break;
+  }
+  fillVelocityGhosts(x, c, bc_, GhostMode::Full);
+  return it;
+}
+
+}  // namespace gf::fluid

@@ -1,0 +1,333 @@
+#include "fluid/multigrid.hpp"
+
+#include <cmath>
+
+#include "fluid/loops.hpp"
+
+namespace gf::fluid {
+
+namespace {
+constexpr int kPreSmooth = 2;
+constexpr int kPostSmooth = 2;
+constexpr std::size_t kCoarsestCells = 64;
+constexpr int kCoarsestSweeps = 40;
+
+double dotProduct(const std::vector<double>& a, const std::vector<double>& b) {
+  return parallelSumElements(static_cast<std::int64_t>(a.size()), [&](std::int64_t i) { return a[i] * b[i]; });
+}
+}  // namespace
+
+void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool, 3>& periodic,
+                             const std::array<std::vector<double>, 3>& T, const std::array<bool, 6>& dirichlet) {
+  dirichlet_ = dirichlet;
+  singular_ = true;
+  for (bool d : dirichlet) singular_ = singular_ && !d;
+  levels_.clear();
+  factors_.clear();
+  PoissonLevel fine;
+  fine.n = n;
+  fine.periodic = periodic;
+  fine.T = T;
+  buildDiagonal(fine, dirichlet);
+  levels_.push_back(std::move(fine));
+  while (true) {
+    const PoissonLevel& L = levels_.back();
+    std::array<int, 3> f{1, 1, 1};
+    bool any = false;
+    for (int a = 0; a < 3; ++a) {
+      if (L.n[a] >= 4 && L.n[a] % 2 == 0) {
+        f[a] = 2;
+        any = true;
+      }
+    }
+    if (!any || L.cells() <= kCoarsestCells) break;
+    PoissonLevel coarse;
+    coarsen(L, coarse, f);
+    buildDiagonal(coarse, dirichlet);
+    factors_.push_back(f);
+    levels_.push_back(std::move(coarse));
+  }
+  for (auto& L : levels_) {
+    L.x.assign(L.cells(), 0.0);
+    L.b.assign(L.cells(), 0.0);
+    L.r.assign(L.cells(), 0.0);
+  }
+  const std::size_t N = levels_[0].cells();
+  r_.assign(N, 0.0);
+  z_.assign(N, 0.0);
+  p_.assign(N, 0.0);
+  q_.assign(N, 0.0);
+}
+
+void MultigridPoisson::buildDiagonal(PoissonLevel& L, const std::array<bool, 6>& dirichlet) const {
+  L.invDiag.assign(L.cells(), 0.0);
+  L.redBlackSafe = true;
+  for (int a = 0; a < 3; ++a)
+    if (L.periodic[a] && L.n[a] % 2 == 1) L.redBlackSafe = false;
+  const int nx = L.n[0], ny = L.n[1], nz = L.n[2];
+  parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
+    const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
+    for (int i = 0; i < nx; ++i) {
+      const int idx[3] = {i, j, k};
+      double d = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+        hi[a] += 1;
+        const double tl = L.T[a][L.faceIndex(a, lo[0], lo[1], lo[2])];
+        const double th = L.T[a][L.faceIndex(a, hi[0], hi[1], hi[2])];
+        const bool lowBoundary = idx[a] == 0, highBoundary = idx[a] == L.n[a] - 1;
+        if (L.n[a] == 1 && L.periodic[a]) continue;  // one periodic cell couples to itself only
+        d += (!lowBoundary || L.periodic[a]) ? tl : (dirichlet[2 * a] ? 2.0 * tl : 0.0);
+        d += (!highBoundary || L.periodic[a]) ? th : (dirichlet[2 * a + 1] ? 2.0 * th : 0.0);
+      }
+      L.invDiag[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * line] = d > 0.0 ? 1.0 / d : 0.0;
+    }
+  });
+}
+
+void MultigridPoisson::coarsen(const PoissonLevel& fine, PoissonLevel& coarse, const std::array<int, 3>& f) const {
+  for (int a = 0; a < 3; ++a) coarse.n[a] = fine.n[a] / f[a];
+  coarse.periodic = fine.periodic;
+  for (int a = 0; a < 3; ++a) {
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    std::array<int, 3> fn = coarse.n;
+    fn[a] += 1;
+    coarse.T[a].assign(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2], 0.0);
+    parallelFor(static_cast<std::int64_t>(fn[1]) * fn[2], [&](std::int64_t line) {
+      const int J = static_cast<int>(line % fn[1]), K = static_cast<int>(line / fn[1]);
+      for (int I = 0; I < fn[0]; ++I) {
+        int C[3] = {I, J, K};
+        double sum = 0.0;
+        for (int db = 0; db < f[b]; ++db)
+          for (int dc = 0; dc < f[c]; ++dc) {
+            int F[3];
+            F[a] = C[a] * f[a];
+            F[b] = C[b] * f[b] + db;
+            F[c] = C[c] * f[c] + dc;
+            sum += fine.T[a][fine.faceIndex(a, F[0], F[1], F[2])];
+          }
+        coarse.T[a][coarse.faceIndex(a, I, J, K)] = sum / f[a];
+      }
+    });
+  }
+}
+
+void MultigridPoisson::applyLevel(const PoissonLevel& L, const std::vector<double>& x, std::vector<double>& y) const {
+  const int nx = L.n[0], ny = L.n[1], nz = L.n[2];
+  const std::size_t sy = nx, sz = static_cast<std::size_t>(nx) * ny;
+  parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
+    const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
+    const std::size_t base = static_cast<std::size_t>(nx) * line;
+    for (int i = 0; i < nx; ++i) {
+      const std::size_t c = base + i;
+      if (L.invDiag[c] == 0.0) {
+        y[c] = 0.0;
+        continue;
+      }
+      double off = 0.0;
+      const double* Tx = L.T[0].data() + L.faceIndex(0, i, j, k);
+      if (i > 0) off += Tx[0] * x[c - 1];
+      else if (L.periodic[0] && nx > 1) off += Tx[0] * x[c + nx - 1];
+      if (i < nx - 1) off += Tx[1] * x[c + 1];
+      else if (L.periodic[0] && nx > 1) off += Tx[1] * x[c + 1 - nx];
+      const double tys = L.T[1][L.faceIndex(1, i, j, k)], tyn = L.T[1][L.faceIndex(1, i, j + 1, k)];
+      if (j > 0) off += tys * x[c - sy];
+      else if (L.periodic[1] && ny > 1) off += tys * x[c + (ny - 1) * sy];
+      if (j < ny - 1) off += tyn * x[c + sy];
+      else if (L.periodic[1] && ny > 1) off += tyn * x[c - (ny - 1) * sy];
+      const double tzb = L.T[2][L.faceIndex(2, i, j, k)], tzt = L.T[2][L.faceIndex(2, i, j, k + 1)];
+      if (k > 0) off += tzb * x[c - sz];
+      else if (L.periodic[2] && nz > 1) off += tzb * x[c + (nz - 1) * sz];
+      if (k < nz - 1) off += tzt * x[c + sz];
+      else if (L.periodic[2] && nz > 1) off += tzt * x[c - (nz - 1) * sz];
+      y[c] = x[c] / L.invDiag[c] - off;
+    }
+  });
+}
+
+// One half-sweep of red-black Gauss-Seidel over the cells with (i+j+k) % 2 == colour.
+void MultigridPoisson::smoothColour(PoissonLevel& L, int colour) const {
+  const int nx = L.n[0], ny = L.n[1], nz = L.n[2];
+  const std::size_t sy = nx, sz = static_cast<std::size_t>(nx) * ny;
+  std::vector<double>& x = L.x;
+  const std::vector<double>& b = L.b;
+  parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
+    const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
+    const std::size_t base = static_cast<std::size_t>(nx) * line;
+    const double* Tx = L.T[0].data() + L.faceIndex(0, 0, j, k);
+    const double* Tys = L.T[1].data() + L.faceIndex(1, 0, j, k);
+    const double* Tyn = L.T[1].data() + L.faceIndex(1, 0, j + 1, k);
+    const double* Tzb = L.T[2].data() + L.faceIndex(2, 0, j, k);
+    const double* Tzt = L.T[2].data() + L.faceIndex(2, 0, j, k + 1);
+    const bool hasS = j > 0 || (L.periodic[1] && ny > 1), hasN = j < ny - 1 || (L.periodic[1] && ny > 1);
+    const bool hasB = k > 0 || (L.periodic[2] && nz > 1), hasT = k < nz - 1 || (L.periodic[2] && nz > 1);
+    const std::ptrdiff_t offS = j > 0 ? -static_cast<std::ptrdiff_t>(sy) : static_cast<std::ptrdiff_t>((ny - 1) * sy);
+    const std::ptrdiff_t offN = j < ny - 1 ? static_cast<std::ptrdiff_t>(sy) : -static_cast<std::ptrdiff_t>((ny - 1) * sy);
+    const std::ptrdiff_t offB = k > 0 ? -static_cast<std::ptrdiff_t>(sz) : static_cast<std::ptrdiff_t>((nz - 1) * sz);
+    const std::ptrdiff_t offT = k < nz - 1 ? static_cast<std::ptrdiff_t>(sz) : -static_cast<std::ptrdiff_t>((nz - 1) * sz);
+    const bool perX = L.periodic[0] && nx > 1;
+    for (int i = (j + k + colour) & 1; i < nx; i += 2) {
+      const std::size_t c = base + i;
+      double s = b[c];
+      if (i > 0) s += Tx[i] * x[c - 1];
+      else if (perX) s += Tx[i] * x[c + nx - 1];
+      if (i < nx - 1) s += Tx[i + 1] * x[c + 1];
+      else if (perX) s += Tx[i + 1] * x[c + 1 - nx];
+      if (hasS) s += Tys[i] * x[c + offS];
+      if (hasN) s += Tyn[i] * x[c + offN];
+      if (hasB) s += Tzb[i] * x[c + offB];
+      if (hasT) s += Tzt[i] * x[c + offT];
+      x[c] = s * L.invDiag[c];
+    }
+  });
+}
+
+// Forward then backward lexicographic Gauss-Seidel (serial; small levels only): symmetric.
+void MultigridPoisson::symmetricGaussSeidel(PoissonLevel& L) const {
+  const int nx = L.n[0], ny = L.n[1], nz = L.n[2];
+  auto relax = [&](int i, int j, int k) {
+    const std::size_t c = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
+    double s = L.b[c];
+    const int idx[3] = {i, j, k};
+    for (int a = 0; a < 3; ++a) {
+      if (L.n[a] == 1) continue;
+      int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+      hi[a] += 1;
+      const double tl = L.T[a][L.faceIndex(a, lo[0], lo[1], lo[2])];
+      const double th = L.T[a][L.faceIndex(a, hi[0], hi[1], hi[2])];
+      int m[3] = {i, j, k}, p[3] = {i, j, k};
+      bool hasM = true, hasP = true;
+      if (idx[a] > 0) m[a] -= 1;
+      else if (L.periodic[a]) m[a] = L.n[a] - 1;
+      else hasM = false;
+      if (idx[a] < L.n[a] - 1) p[a] += 1;
+      else if (L.periodic[a]) p[a] = 0;
+      else hasP = false;
+      if (hasM) s += tl * L.x[static_cast<std::size_t>(m[0]) + static_cast<std::size_t>(nx) * (m[1] + static_cast<std::size_t>(ny) * m[2])];
+      if (hasP) s += th * L.x[static_cast<std::size_t>(p[0]) + static_cast<std::size_t>(nx) * (p[1] + static_cast<std::size_t>(ny) * p[2])];
+    }
+    L.x[c] = s * L.invDiag[c];
+  };
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) relax(i, j, k);
+  for (int k = nz - 1; k >= 0; --k)
+    for (int j = ny - 1; j >= 0; --j)
+      for (int i = nx - 1; i >= 0; --i) relax(i, j, k);
+}
+
+void MultigridPoisson::vcycle(int l) {
+  PoissonLevel& L = levels_[l];
+  std::fill(L.x.begin(), L.x.end(), 0.0);
+  const bool coarsest = l + 1 == static_cast<int>(levels_.size());
+  if (coarsest || !L.redBlackSafe) {
+    // Coarsest level (or a level that cannot be red-black coloured): symmetric GS sweeps.
+    const int sweeps = coarsest ? kCoarsestSweeps : kPreSmooth;
+    for (int s = 0; s < sweeps; ++s) symmetricGaussSeidel(L);
+    if (coarsest) return;
+  } else {
+    for (int s = 0; s < kPreSmooth; ++s) {
+      smoothColour(L, 0);
+      smoothColour(L, 1);
+    }
+  }
+  applyLevel(L, L.x, L.r);
+  PoissonLevel& C = levels_[l + 1];
+  const std::array<int, 3> f = factors_[l];
+  const int nx = L.n[0], ny = L.n[1];
+  const int cx = C.n[0], cy = C.n[1], cz = C.n[2];
+  // Restriction: sum of the children's residuals (volume-integrated equations).
+  parallelFor(static_cast<std::int64_t>(cy) * cz, [&](std::int64_t line) {
+    const int J = static_cast<int>(line % cy), K = static_cast<int>(line / cy);
+    for (int I = 0; I < cx; ++I) {
+      double s = 0.0;
+      for (int dk = 0; dk < f[2]; ++dk)
+        for (int dj = 0; dj < f[1]; ++dj)
+          for (int di = 0; di < f[0]; ++di) {
+            const std::size_t c = static_cast<std::size_t>(I * f[0] + di) +
+                                  static_cast<std::size_t>(nx) * (J * f[1] + dj + static_cast<std::size_t>(ny) * (K * f[2] + dk));
+            s += L.b[c] - L.r[c];
+          }
+      C.b[static_cast<std::size_t>(I) + static_cast<std::size_t>(cx) * line] = s;
+    }
+  });
+  vcycle(l + 1);
+  // Prolongation: piecewise constant, added to the children.
+  parallelFor(static_cast<std::int64_t>(L.n[1]) * L.n[2], [&](std::int64_t line) {
+    const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
+    const std::size_t cbase = static_cast<std::size_t>(cx) * (j / f[1] + static_cast<std::size_t>(cy) * (k / f[2]));
+    const std::size_t base = static_cast<std::size_t>(nx) * line;
+    for (int i = 0; i < nx; ++i) L.x[base + i] += C.x[cbase + i / f[0]];
+  });
+  if (!L.redBlackSafe) {
+    for (int s = 0; s < kPostSmooth; ++s) symmetricGaussSeidel(L);
+  } else {
+    for (int s = 0; s < kPostSmooth; ++s) {
+      smoothColour(L, 1);
+      smoothColour(L, 0);
+    }
+  }
+}
+
+void MultigridPoisson::precondition(const std::vector<double>& r, std::vector<double>& z) {
+  PoissonLevel& L = levels_[0];
+  std::copy(r.begin(), r.end(), L.b.begin());
+  vcycle(0);
+  std::copy(L.x.begin(), L.x.end(), z.begin());
+  if (singular_) removeMean(z);
+}
+
+void MultigridPoisson::removeMean(std::vector<double>& v) const {
+  const PoissonLevel& L = levels_[0];
+  const auto n = static_cast<std::int64_t>(v.size());
+  const double count = parallelSumElements(n, [&](std::int64_t i) { return L.invDiag[i] > 0.0 ? 1.0 : 0.0; });
+  if (count == 0.0) return;
+  const double mean = parallelSumElements(n, [&](std::int64_t i) { return L.invDiag[i] > 0.0 ? v[i] : 0.0; }) / count;
+  parallelForElements(n, [&](std::int64_t i) { v[i] = L.invDiag[i] > 0.0 ? v[i] - mean : 0.0; });
+}
+
+PoissonResult MultigridPoisson::solve(std::vector<double>& x, const std::vector<double>& b, double tol,
+                                      int maxIterations) {
+  PoissonResult result;
+  const auto n = static_cast<std::int64_t>(b.size());
+  std::copy(b.begin(), b.end(), r_.begin());
+  if (singular_) removeMean(r_);  // compatible right-hand side
+  const double bnorm = std::sqrt(dotProduct(r_, r_));
+  if (bnorm == 0.0) {
+    std::fill(x.begin(), x.end(), 0.0);
+    return result;
+  }
+  applyLevel(levels_[0], x, q_);
+  parallelForElements(n, [&](std::int64_t i) { r_[i] -= q_[i]; });
+  if (singular_) removeMean(r_);
+  double rnorm = std::sqrt(dotProduct(r_, r_));
+  result.relativeResidual = rnorm / bnorm;
+  if (result.relativeResidual <= tol) return result;
+  precondition(r_, z_);
+  p_ = z_;
+  double rz = dotProduct(r_, z_);
+  for (int it = 1; it <= maxIterations; ++it) {
+    applyLevel(levels_[0], p_, q_);
+    const double pq = dotProduct(p_, q_);
+    if (pq <= 0.0) break;
+    const double alpha = rz / pq;
+    parallelForElements(n, [&](std::int64_t i) {
+      x[i] += alpha * p_[i];
+      r_[i] -= alpha * q_[i];
+    });
+    rnorm = std::sqrt(dotProduct(r_, r_));
+    result.iterations = it;
+    result.relativeResidual = rnorm / bnorm;
+    if (result.relativeResidual <= tol) break;
+    precondition(r_, z_);
+    const double rzNew = dotProduct(r_, z_);
+    const double beta = rzNew / rz;
+    rz = rzNew;
+    parallelForElements(n, [&](std::int64_t i) { p_[i] = z_[i] + beta * p_[i]; });
+  }
+  result.converged = result.relativeResidual <= tol;
+  if (singular_) removeMean(x);
+  return result;
+}
+
+}  // namespace gf::fluid

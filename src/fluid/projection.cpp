@@ -1,0 +1,251 @@
+// Incremental pressure-correction projection with the eps-weighted Poisson equation
+//   div( eps a / (rho gamma0 eps/dt + K) grad phi ) = div(eps u*) + (eps - eps_old)/dt
+//   u = u* - a / (rho gamma0 eps/dt + K) grad phi,   p += phi       (a = eps for model A, 1 for B)
+// so that the corrected velocity satisfies the discrete continuity equation of seed 000 eq. 5.3.
+#include <cmath>
+
+#include "fluid/loops.hpp"
+#include "fluid/solver.hpp"
+
+namespace gf::fluid {
+
+namespace {
+inline double avg(const double* a, std::size_t i, std::ptrdiff_t s) { return 0.5 * (a[i] + a[i - s]); }
+}  // namespace
+
+double Solver::divergenceAt(int i, int j, int k, double dt) const {
+  const Field& eps = coupling_.voidFraction;
+  const double* E = eps.data().data();
+  const std::size_t cc = eps.index(i, j, k);
+  double div = 0.0;
+  for (int a = 0; a < (twoD_ ? 2 : 3); ++a) {
+    const Field& u = u_[a];
+    const std::size_t f = u.index(i, j, k);
+    const std::ptrdiff_t su = u.stride(a), se = eps.stride(a);
+    const double flux_hi = 0.5 * (E[cc] + E[cc + se]) * u.data()[f + su];
+    const double flux_lo = 0.5 * (E[cc] + E[cc - se]) * u.data()[f];
+    div += (flux_hi - flux_lo) / grid_.spacing[a];
+  }
+  if (dt > 0.0) div += (E[cc] - coupling_.voidFractionOld.data()[cc]) / dt;
+  return div;
+}
+
+double Solver::maxDivergence() const {
+  double m = 0.0;
+  for (int k = 0; k < grid_.cells[2]; ++k)
+    for (int j = 0; j < grid_.cells[1]; ++j)
+      for (int i = 0; i < grid_.cells[0]; ++i)
+        if (!blocked(i, j, k)) m = std::max(m, std::abs(divergenceAt(i, j, k, lastDt_)));
+  return m;
+}
+
+void Solver::balanceOutflow(double dt) {
+  const double* E = coupling_.voidFraction.data().data();
+  bool anyOutflow = false, anyPressure = false;
+  // Outlet faces take the predicted velocity of their inner neighbour (zero gradient).
+  for (int a = 0; a < (twoD_ ? 2 : 3); ++a)
+    for (int s = 0; s < 2; ++s) {
+      const BoundaryType t = bc_.at(a, s).type;
+      if (!isOutlet(t)) continue;
+      anyOutflow = anyOutflow || t == BoundaryType::Outflow;
+      anyPressure = anyPressure || t == BoundaryType::PressureOutlet;
+      Field& u = u_[a];
+      const int n = grid_.cells[a];
+      const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+      for (int q = 0; q < grid_.cells[b2]; ++q)
+        for (int p = 0; p < grid_.cells[b1]; ++p) {
+          int idx[3];
+          idx[a] = s == 0 ? 0 : n;
+          idx[b1] = p;
+          idx[b2] = q;
+          int cell[3] = {idx[0], idx[1], idx[2]};
+          if (s == 1) cell[a] = n - 1;
+          const std::size_t f = u.index(idx[0], idx[1], idx[2]);
+          const std::ptrdiff_t st = u.stride(a);
+          u.data()[f] = blocked(cell[0], cell[1], cell[2]) ? 0.0 : u.data()[s == 0 ? f + st : f - st];
+        }
+    }
+  if (!anyOutflow || anyPressure) return;
+  // Zero-gradient outlets only: shift the outflow velocity so that mass is conserved globally
+  // (the Poisson problem is then a compatible pure-Neumann problem).
+  double net = 0.0, outflowArea = 0.0;
+  for (int k = 0; k < grid_.cells[2]; ++k)
+    for (int j = 0; j < grid_.cells[1]; ++j)
+      for (int i = 0; i < grid_.cells[0]; ++i)
+        net += grid_.cellVolume() *
+               (coupling_.voidFraction(i, j, k) - coupling_.voidFractionOld(i, j, k)) / dt;
+  for (int a = 0; a < (twoD_ ? 2 : 3); ++a) {
+    if (bc_.periodic(a)) continue;
+    const double area = grid_.cellVolume() / grid_.spacing[a];
+    const int n = grid_.cells[a];
+    const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+    for (int s = 0; s < 2; ++s) {
+      const bool out = bc_.at(a, s).type == BoundaryType::Outflow;
+      for (int q = 0; q < grid_.cells[b2]; ++q)
+        for (int p = 0; p < grid_.cells[b1]; ++p) {
+          int idx[3];
+          idx[a] = s == 0 ? 0 : n;
+          idx[b1] = p;
+          idx[b2] = q;
+          int cell[3] = {idx[0], idx[1], idx[2]};
+          if (s == 1) cell[a] = n - 1;
+          const double epsF = E[coupling_.voidFraction.index(cell[0], cell[1], cell[2])];
+          const double outward = (s == 0 ? -1.0 : 1.0) * u_[a](idx[0], idx[1], idx[2]);
+          net += epsF * outward * area;
+          if (out && !blocked(cell[0], cell[1], cell[2])) outflowArea += epsF * area;
+        }
+    }
+  }
+  if (outflowArea <= 0.0) return;
+  const double shift = -net / outflowArea;  // added to the outward velocity
+  for (int a = 0; a < (twoD_ ? 2 : 3); ++a)
+    for (int s = 0; s < 2; ++s) {
+      if (bc_.at(a, s).type != BoundaryType::Outflow) continue;
+      const int n = grid_.cells[a];
+      const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+      for (int q = 0; q < grid_.cells[b2]; ++q)
+        for (int p = 0; p < grid_.cells[b1]; ++p) {
+          int idx[3];
+          idx[a] = s == 0 ? 0 : n;
+          idx[b1] = p;
+          idx[b2] = q;
+          int cell[3] = {idx[0], idx[1], idx[2]};
+          if (s == 1) cell[a] = n - 1;
+          if (!blocked(cell[0], cell[1], cell[2])) u_[a](idx[0], idx[1], idx[2]) += (s == 0 ? -shift : shift);
+        }
+    }
+}
+
+void Solver::project(double dt, double g0) {
+  const int nx = grid_.cells[0], ny = grid_.cells[1], nz = grid_.cells[2];
+  const double* E = coupling_.voidFraction.data().data();
+  const double* Eo = coupling_.voidFractionOld.data().data();
+  const double* K = coupling_.dragCoefficient.data().data();
+  const bool modelA = model_ == MomentumModel::A;
+  const double timeCoeff = rho_ * g0 / dt;
+  const int dims = twoD_ ? 2 : 3;
+  // Does face (i,j,k) of component a take part in the pressure correction?
+  auto coupled = [&](int a, int i, int j, int k) {
+    const Field& u = u_[a];
+    const int idx[3] = {i, j, k};
+    const int n = grid_.cells[a];
+    if (bc_.periodic(a) && idx[a] == n) return unknown_[a][u.index(i - (a == 0) * n, j - (a == 1) * n, k - (a == 2) * n)] != 0;
+    if (unknown_[a][u.index(i, j, k)]) return true;
+    if (idx[a] == 0 || idx[a] == n) {
+      const int s = idx[a] == 0 ? 0 : 1;
+      int cell[3] = {i, j, k};
+      if (s == 1) cell[a] = n - 1;
+      return bc_.at(a, s).type == BoundaryType::PressureOutlet && !blocked(cell[0], cell[1], cell[2]);
+    }
+    return false;
+  };
+  // Coefficient a / (rho gamma0 eps / dt + K) of the velocity correction at a face.
+  auto correctionCoeff = [&](int a, std::size_t cc) {
+    const std::ptrdiff_t se = p_.stride(a);
+    const double epsF = avg(E, cc, se);
+    return (modelA ? epsF : 1.0) / (timeCoeff * epsF + avg(K, cc, se));
+  };
+  if (!uniformCoupling_ || timeCoeff != poissonKey_) {
+    std::array<std::vector<double>, 3> T;
+    std::array<bool, 6> dirichlet{};
+    for (int a = 0; a < 3; ++a) {
+      std::array<int, 3> fn = grid_.cells;
+      fn[a] += 1;
+      T[a].assign(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2], 0.0);
+      if (a >= dims) continue;
+      const double areaOverH = grid_.cellVolume() / (grid_.spacing[a] * grid_.spacing[a]);
+      for (int s = 0; s < 2; ++s) dirichlet[2 * a + s] = bc_.at(a, s).type == BoundaryType::PressureOutlet;
+      parallelFor(static_cast<std::int64_t>(fn[1]) * fn[2], [&](std::int64_t line) {
+        const int j = static_cast<int>(line % fn[1]), k = static_cast<int>(line / fn[1]);
+        for (int i = 0; i < fn[0]; ++i) {
+          if (!coupled(a, i, j, k)) continue;
+          const std::size_t cc = p_.index(i, j, k);
+          const double epsF = avg(E, cc, p_.stride(a));
+          T[a][static_cast<std::size_t>(i) + fn[0] * static_cast<std::size_t>(line)] =
+              epsF * correctionCoeff(a, cc) * areaOverH;
+        }
+      });
+    }
+    std::array<bool, 3> periodic{bc_.periodic(0), bc_.periodic(1), bc_.periodic(2) && !twoD_};
+    poisson_.setup(grid_.cells, periodic, T, dirichlet);
+    poissonKey_ = uniformCoupling_ ? timeCoeff : -1.0;
+  }
+  // Right-hand side: -(net eps u* outflow + V d eps/dt) per cell.
+  const double V = grid_.cellVolume();
+  parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
+    const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
+    for (int i = 0; i < nx; ++i) {
+      const std::size_t id = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * line;
+      poissonX_[id] = 0.0;
+      if (blocked(i, j, k)) {
+        poissonRhs_[id] = 0.0;
+        continue;
+      }
+      const std::size_t cc = p_.index(i, j, k);
+      double net = V * (E[cc] - Eo[cc]) / dt;
+      for (int a = 0; a < dims; ++a) {
+        const Field& u = u_[a];
+        const std::size_t f = u.index(i, j, k);
+        const std::ptrdiff_t su = u.stride(a), se = p_.stride(a);
+        const double area = V / grid_.spacing[a];
+        net += area * (avg(E, cc + se, se) * u.data()[f + su] - avg(E, cc, se) * u.data()[f]);
+      }
+      poissonRhs_[id] = -net;
+    }
+  });
+  const PoissonResult res = poisson_.solve(poissonX_, poissonRhs_, pressureTolerance_, pressureMaxIterations_);
+  stats_.pressureIterations = res.iterations;
+  stats_.pressureResidual = res.relativeResidual;
+  parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
+    const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
+    for (int i = 0; i < nx; ++i) phi_(i, j, k) = poissonX_[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * line];
+  });
+  fillCellGhosts(phi_, bc_, CellGhostKind::PressureIncrement);
+  const double* Phi = phi_.data().data();
+  for (int a = 0; a < dims; ++a) {
+    Field& u = u_[a];
+    const auto& pts = u.points();
+    const std::ptrdiff_t se = p_.stride(a);
+    const double invH = 1.0 / grid_.spacing[a];
+    parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
+      const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
+      for (int i = 0; i < pts[0]; ++i) {
+        const int idx[3] = {i, j, k};
+        if (idx[a] == grid_.cells[a] && bc_.periodic(a)) continue;  // duplicate of face 0
+        if (!coupled(a, i, j, k)) continue;
+        const std::size_t cc = p_.index(i, j, k);
+        u(i, j, k) -= correctionCoeff(a, cc) * (Phi[cc] - Phi[cc - se]) * invH;
+      }
+    });
+    fillVelocityGhosts(u, a, bc_, GhostMode::Full);
+  }
+  parallelForElements(static_cast<std::int64_t>(p_.data().size()), [&](std::int64_t q) { p_.data()[q] += phi_.data()[q]; });
+  fillCellGhosts(p_, bc_, CellGhostKind::Pressure);
+}
+
+void Solver::controlFlowRate(double dt, double g0) {
+  // Uniform correction of the driving-axis velocity so the mean superficial velocity equals
+  // bulk_velocity; the pressure gradient that produces it is accumulated in drive_.
+  const int a = driveAxis_;
+  Field& u = u_[a];
+  const double* E = coupling_.voidFraction.data().data();
+  const std::ptrdiff_t se = p_.stride(a);
+  const auto& list = unknownList_[a];
+  double flux = 0.0, epsSum = 0.0;
+  for (int k = 0; k < grid_.cells[2]; ++k)
+    for (int j = 0; j < grid_.cells[1]; ++j)
+      for (int i = 0; i < grid_.cells[0]; ++i) {
+        const std::size_t cc = p_.index(i, j, k);
+        const double epsF = 0.5 * (E[cc] + E[cc - se]);
+        flux += epsF * u(i, j, k);
+        if (unknown_[a][u.index(i, j, k)]) epsSum += epsF;
+      }
+  const double count = static_cast<double>(grid_.interiorCellCount());
+  if (epsSum <= 0.0 || list.empty()) return;
+  const double delta = (bulkVelocity_ - flux / count) * count / epsSum;
+  for (auto f : list) u.data()[f] += delta;
+  fillVelocityGhosts(u, a, bc_, GhostMode::Full);
+  drive_ += rho_ * g0 * delta / dt;
+}
+
+}  // namespace gf::fluid

@@ -1,0 +1,412 @@
+#include "fluid/solver.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "fluid/loops.hpp"
+
+namespace gf::fluid {
+
+namespace {
+int axisFromName(const std::string& s) { return s == "x" ? 0 : (s == "y" ? 1 : 2); }
+constexpr const char* kComponentNames[3] = {"velocity_x", "velocity_y", "velocity_z"};
+}  // namespace
+
+Solver::Solver(Params& root, const Domain& domain, const Vec3& gravity) : domain_(domain), gravity_(gravity) {
+  Params fluid = root.section({"fluid", "-", "incompressible (volume-averaged) Navier-Stokes solver"});
+  readParams(fluid, domain);
+  coupling_ = CouplingFields(grid_);
+  for (int c = 0; c < 3; ++c) {
+    const auto st = static_cast<Staggering>(c + 1);
+    u_[c] = Field(grid_, st);
+    uOld_[c] = Field(grid_, st);
+    conv_[c] = Field(grid_, st);
+    convOld_[c] = Field(grid_, st);
+    rhs_[c] = Field(grid_, st);
+    precY_[c] = Field(grid_, st);
+    precZ_[c] = Field(grid_, st);
+  }
+  p_ = Field(grid_);
+  phi_ = Field(grid_);
+  epsOlder_ = Field(grid_, Staggering::Cell, 1.0);
+  scalar_ = Field(grid_);
+  blocked_.assign(p_.data().size(), 0);
+  markBlocked(fluid);
+  buildUnknownMasks();
+  std::size_t maxSize = 0;
+  for (int c = 0; c < 3; ++c) maxSize = std::max(maxSize, u_[c].data().size());
+  for (auto& v : krylov_) v.assign(maxSize, 0.0);  // r, rhat, p, v, s, t, 1/diag, u^n
+  poissonRhs_.assign(grid_.interiorCellCount(), 0.0);
+  poissonX_.assign(grid_.interiorCellCount(), 0.0);
+
+  Params init = fluid.section({"initial", "-", "initial condition"});
+  const Vec3 u0 = init.vec3({"velocity", "m/s", "uniform initial velocity (0 in blocked cells)"}, Vec3{});
+  const double p0 = init.real({"pressure", "Pa", "uniform initial pressure"}, 0.0);
+  const double s0 = init.real({"scalar", "-", "uniform initial passive scalar"}, 0.0);
+  setVelocity([&](const Vec3&) { return u0; });
+  setPressure([&](const Vec3&) { return p0; });
+  setScalar([&](const Vec3&) { return s0; });
+}
+
+void Solver::readParams(Params& fluid, const Domain& domain) {
+  rho_ = fluid.real({"density", "kg/m^3", "fluid density", Range::positive()}, 1000.0);
+  mu_ = fluid.real({"viscosity", "Pa s", "dynamic viscosity", Range::nonNegative()}, 1e-3);
+  const Vec3 cells = fluid.vec3({"cells", "-", "grid cells per direction [nx, ny, nz]; nz = 1 is 2D"}, Vec3{16, 16, 16});
+  grid_.ghosts = 2;
+  grid_.origin = domain.min;
+  for (int a = 0; a < 3; ++a) {
+    const double n = cells[a];
+    if (!fluid.documenting() && (n < 1 || n != std::floor(n) || n > 1e5))
+      fluid.fail("cells", fmt::format("{:g} cells along axis {}", n, a), "a positive integer per direction");
+    grid_.cells[a] = fluid.documenting() ? 16 : static_cast<int>(n);
+    grid_.spacing[a] = (domain.max[a] - domain.min[a]) / grid_.cells[a];
+  }
+  twoD_ = grid_.cells[2] == 1;
+  model_ = fluid.choice({"model", "-", "volume-averaged momentum form: A (-eps grad p) or B (-grad p)"}, {"A", "B"}, "A") ==
+                   "A"
+               ? MomentumModel::A
+               : MomentumModel::B;
+  scheme_ = fluid.choice({"convection", "-", "convection scheme: central (2nd order) or van_leer (TVD)"},
+                         {"central", "van_leer"}, "van_leer") == "central"
+                ? ConvectionScheme::Central
+                : ConvectionScheme::VanLeer;
+  cfl_ = fluid.real({"cfl", "-", "Courant number used by stableTimeStep", Range{0.0, 2.0, false, true}}, 0.5);
+  cflLimit_ = fluid.real({"cfl_limit", "-", "Courant number above which checkHealth stops the run", Range::positive()}, 1.0);
+  momentumTolerance_ = fluid.real(
+      {"momentum_tolerance", "-", "relative residual of the implicit momentum (Helmholtz) solves", Range::positive()},
+      1e-8);
+  momentumMaxIterations_ = static_cast<int>(
+      fluid.integer({"momentum_max_iterations", "-", "iteration cap of the momentum solves", Range::atLeast(1)}, 200));
+  Params pressure = fluid.section({"pressure", "-", "pressure Poisson solver (multigrid-preconditioned CG)"});
+  pressureTolerance_ = pressure.real({"tolerance", "-", "relative residual ||b - A x|| / ||b||", Range::positive()}, 1e-8);
+  pressureMaxIterations_ =
+      static_cast<int>(pressure.integer({"max_iterations", "-", "iteration cap", Range::atLeast(1)}, 200));
+
+  Params drive = fluid.section({"driving", "-", "mean pressure gradient or flow rate along a periodic axis"});
+  const std::string mode = drive.choice({"mode", "-", "none | pressure_gradient | flow_rate"},
+                                        {"none", "pressure_gradient", "flow_rate"}, "none");
+  driveAxis_ = axisFromName(drive.choice({"axis", "-", "driving axis"}, {"x", "y", "z"}, "x"));
+  drive_ = drive.real({"pressure_gradient", "Pa/m", "imposed -dp/dx (mode pressure_gradient); initial guess otherwise"}, 0.0);
+  bulkVelocity_ = drive.real({"bulk_velocity", "m/s", "imposed mean superficial velocity (mode flow_rate)"}, 0.0);
+  driveMode_ = mode == "none" ? DrivingMode::None
+                              : (mode == "pressure_gradient" ? DrivingMode::PressureGradient : DrivingMode::FlowRate);
+  if (driveMode_ == DrivingMode::None) drive_ = 0.0;
+  if (!fluid.documenting() && driveMode_ == DrivingMode::FlowRate && !domain.periodic[driveAxis_])
+    drive.fail("mode", "flow_rate along a non-periodic axis", "a periodic driving axis");
+
+  Params sc = fluid.section({"scalar", "-", "passive scalar (temperature, species)"});
+  scalarEnabled_ = sc.boolean({"enabled", "-", "transport a passive scalar"}, false);
+  scalarDiffusivity_ = sc.real({"diffusivity", "m^2/s", "scalar diffusivity", Range::nonNegative()}, 0.0);
+  scalarSource_ = sc.real({"source", "1/s", "uniform volumetric source (scalar units per second)"}, 0.0);
+
+  std::array<bool, 3> periodic = domain.periodic;
+  bc_ = Boundaries::read(fluid, periodic, twoD_);
+}
+
+void Solver::markBlocked(Params& fluid) {
+  for (Params& b : fluid.list({"blocked", "-", "solid (blocked) regions: boxes and cylinders"})) {
+    const std::string shape = b.choice({"shape", "-", "box or cylinder"}, {"box", "cylinder"});
+    const Vec3 lo = b.vec3({"min", "m", "box lower corner"}, Vec3{});
+    const Vec3 hi = b.vec3({"max", "m", "box upper corner"}, Vec3{});
+    const Vec3 centre = b.vec3({"centre", "m", "cylinder: a point on the axis"}, Vec3{});
+    const int axis = axisFromName(b.choice({"axis", "-", "cylinder axis direction"}, {"x", "y", "z"}, "z"));
+    const double radius = b.real({"radius", "m", "cylinder radius"}, 0.0);
+    for (int k = 0; k < grid_.cells[2]; ++k)
+      for (int j = 0; j < grid_.cells[1]; ++j)
+        for (int i = 0; i < grid_.cells[0]; ++i) {
+          const Vec3 x = grid_.cellCentre(i, j, k);
+          bool inside;
+          if (shape == "box") {
+            inside = x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z;
+          } else {
+            double r2 = 0.0;
+            for (int a = 0; a < 3; ++a)
+              if (a != axis) r2 += (x[a] - centre[a]) * (x[a] - centre[a]);
+            inside = r2 <= radius * radius;
+          }
+          if (inside) blocked_[p_.index(i, j, k)] = 1;
+        }
+  }
+}
+
+void Solver::buildUnknownMasks() {
+  for (int c = 0; c < 3; ++c) {
+    const Field& u = u_[c];
+    unknown_[c].assign(u.data().size(), 0);
+    unknownList_[c].clear();
+    if (twoD_ && c == 2) continue;
+    const auto& pts = u.points();
+    const int n = grid_.cells[c];
+    for (int k = 0; k < pts[2]; ++k)
+      for (int j = 0; j < pts[1]; ++j)
+        for (int i = 0; i < pts[0]; ++i) {
+          const int idx[3] = {i, j, k};
+          const int f = idx[c];
+          if (f == n) continue;
+          if (f == 0 && !bc_.periodic(c)) continue;
+          int lo[3] = {i, j, k};
+          lo[c] = f == 0 ? n - 1 : f - 1;
+          if (blocked_[p_.index(lo[0], lo[1], lo[2])] || (f < n && blocked_[p_.index(i, j, k)])) continue;
+          const std::size_t id = u.index(i, j, k);
+          unknown_[c][id] = 1;
+          unknownList_[c].push_back(static_cast<std::int64_t>(id));
+        }
+  }
+}
+
+void Solver::fillAllGhosts() {
+  for (int c = 0; c < 3; ++c) fillVelocityGhosts(u_[c], c, bc_, GhostMode::Full);
+  fillCellGhosts(p_, bc_, CellGhostKind::Pressure);
+  fillCellGhosts(coupling_.voidFraction, bc_, CellGhostKind::ZeroGradient);
+  fillCellGhosts(coupling_.voidFractionOld, bc_, CellGhostKind::ZeroGradient);
+  fillCellGhosts(epsOlder_, bc_, CellGhostKind::ZeroGradient);
+  fillCellGhosts(coupling_.dragCoefficient, bc_, CellGhostKind::ZeroGradient);
+  for (int c = 0; c < 3; ++c) {
+    fillCellGhosts(coupling_.forceDensity[c], bc_, CellGhostKind::ZeroGradient);
+    fillCellGhosts(coupling_.particleVelocity[c], bc_, CellGhostKind::ZeroGradient);
+  }
+  if (scalarEnabled_) fillCellGhosts(scalar_, bc_, CellGhostKind::Scalar);
+}
+
+void Solver::setVelocity(const std::function<Vec3(const Vec3&)>& f) {
+  for (int c = 0; c < 3; ++c) {
+    Field& u = u_[c];
+    const auto& pts = u.points();
+    for (int k = 0; k < pts[2]; ++k)
+      for (int j = 0; j < pts[1]; ++j)
+        for (int i = 0; i < pts[0]; ++i) {
+          Vec3 x = grid_.cellCentre(i, j, k);
+          x[c] -= 0.5 * grid_.spacing[c];
+          const std::size_t id = u.index(i, j, k);
+          u.data()[id] = unknown_[c][id] ? f(x)[c] : 0.0;
+        }
+    // Outlet faces start as their neighbours (they are not momentum unknowns).
+    for (int s = 0; s < 2; ++s) {
+      if (!isOutlet(bc_.at(c, s).type)) continue;
+      const int n = grid_.cells[c];
+      for (int k = 0; k < pts[2]; ++k)
+        for (int j = 0; j < pts[1]; ++j)
+          for (int i = 0; i < pts[0]; ++i) {
+            int idx[3] = {i, j, k};
+            if (idx[c] != (s == 0 ? 0 : n)) continue;
+            int nb[3] = {i, j, k};
+            nb[c] = s == 0 ? 1 : n - 1;
+            u(i, j, k) = u(nb[0], nb[1], nb[2]);
+          }
+    }
+    fillVelocityGhosts(u, c, bc_, GhostMode::Full);
+    uOld_[c] = u;
+  }
+}
+
+void Solver::setPressure(const std::function<double(const Vec3&)>& f) {
+  for (int k = 0; k < grid_.cells[2]; ++k)
+    for (int j = 0; j < grid_.cells[1]; ++j)
+      for (int i = 0; i < grid_.cells[0]; ++i) p_(i, j, k) = f(grid_.cellCentre(i, j, k));
+  fillCellGhosts(p_, bc_, CellGhostKind::Pressure);
+}
+
+void Solver::setScalar(const std::function<double(const Vec3&)>& f) {
+  for (int k = 0; k < grid_.cells[2]; ++k)
+    for (int j = 0; j < grid_.cells[1]; ++j)
+      for (int i = 0; i < grid_.cells[0]; ++i) scalar_(i, j, k) = f(grid_.cellCentre(i, j, k));
+  fillCellGhosts(scalar_, bc_, CellGhostKind::Scalar);
+}
+
+void Solver::step(double dt) {
+  ScopedPhase timer(timers_, Phase::Fluid);
+  fillAllGhosts();
+  const auto& eps = coupling_.voidFraction.data();
+  const auto& epsOld = coupling_.voidFractionOld.data();
+  const auto& K = coupling_.dragCoefficient.data();
+  bool uniform = true;
+  for (std::size_t i = 0; i < eps.size() && uniform; ++i) uniform = eps[i] == 1.0 && epsOld[i] == 1.0 && K[i] == 0.0;
+  uniformCoupling_ = uniform;
+  if (steps_ == 0) epsOlder_ = coupling_.voidFractionOld;
+  // Variable-step BDF2 (BDF1 on the first step) and matching extrapolation of convection.
+  double g0 = 1.0, g1 = 1.0, g2 = 0.0, e1 = 1.0, e2 = 0.0;
+  if (steps_ > 0 && dtPrev_ > 0.0) {
+    const double w = dt / dtPrev_;
+    g0 = (1.0 + 2.0 * w) / (1.0 + w);
+    g1 = 1.0 + w;
+    g2 = w * w / (1.0 + w);
+    e1 = 1.0 + w;
+    e2 = w;
+  }
+  computeConvection(conv_);
+  stats_ = StepStatistics{};
+  for (int c = 0; c < (twoD_ ? 2 : 3); ++c) assembleMomentum(c, dt, g0, g1, g2, e1, e2);
+  // Each solve also moves u^n into uOld_ (u^{n-1} of the next step).
+  for (int c = 0; c < 3; ++c) stats_.momentumIterations += solveHelmholtz(c, dt, g0);
+  balanceOutflow(dt);
+  {
+    ScopedPhase pt(timers_, Phase::PressureSolve);
+    project(dt, g0);
+  }
+  if (driveMode_ == DrivingMode::FlowRate) controlFlowRate(dt, g0);
+  for (int c = 0; c < 3; ++c) convOld_[c].data().swap(conv_[c].data());
+  epsOlder_ = coupling_.voidFractionOld;
+  dtPrev_ = dt;
+  lastDt_ = dt;
+  time_ += dt;
+  ++steps_;
+  stats_.maxDivergence = maxDivergence();
+  if (scalarEnabled_) advanceScalar(dt);
+}
+
+double Solver::stableTimeStep() const {
+  const int nx = grid_.cells[0], ny = grid_.cells[1], nz = grid_.cells[2];
+  double rate = 0.0;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        double r = 0.0;
+        for (int c = 0; c < (twoD_ ? 2 : 3); ++c) {
+          int hi[3] = {i, j, k};
+          hi[c] += 1;
+          r += 0.5 * std::abs(u_[c](i, j, k) + u_[c](hi[0], hi[1], hi[2])) / grid_.spacing[c];
+        }
+        rate = std::max(rate, r);
+      }
+  return rate > 0.0 ? cfl_ / rate : std::numeric_limits<double>::max();
+}
+
+void Solver::cellVelocity(Field out[3]) const {
+  for (int c = 0; c < 3; ++c) {
+    if (out[c].data().size() != p_.data().size()) out[c] = Field(grid_);
+    Field& o = out[c];
+    const Field& u = u_[c];
+    const auto s = u.stride(c);
+    parallelFor(static_cast<std::int64_t>(grid_.cells[1]) * grid_.cells[2], [&](std::int64_t line) {
+      const int j = static_cast<int>(line % grid_.cells[1]), k = static_cast<int>(line / grid_.cells[1]);
+      for (int i = 0; i < grid_.cells[0]; ++i) {
+        const std::size_t f = u.index(i, j, k);
+        o(i, j, k) = 0.5 * (u.data()[f] + u.data()[f + s]);
+      }
+    });
+    fillCellGhosts(o, bc_, CellGhostKind::ZeroGradient);
+  }
+}
+
+void Solver::pressureGradient(Field out[3]) const {
+  for (int c = 0; c < 3; ++c) {
+    if (out[c].data().size() != p_.data().size()) out[c] = Field(grid_);
+    Field& o = out[c];
+    const auto s = p_.stride(c);
+    const double inv2h = 0.5 / grid_.spacing[c];
+    parallelFor(static_cast<std::int64_t>(grid_.cells[1]) * grid_.cells[2], [&](std::int64_t line) {
+      const int j = static_cast<int>(line % grid_.cells[1]), k = static_cast<int>(line / grid_.cells[1]);
+      for (int i = 0; i < grid_.cells[0]; ++i) {
+        const std::size_t id = p_.index(i, j, k);
+        o.data()[id] = (twoD_ && c == 2) ? 0.0 : (p_.data()[id + s] - p_.data()[id - s]) * inv2h;
+      }
+    });
+    fillCellGhosts(o, bc_, CellGhostKind::ZeroGradient);
+  }
+}
+
+std::vector<NamedCellField> Solver::cellFields() const {
+  std::vector<NamedCellField> out;
+  Field v[3];
+  cellVelocity(v);
+  for (int c = 0; c < 3; ++c) out.push_back({kComponentNames[c], "m/s", v[c]});
+  out.push_back({"pressure", "Pa", p_});
+  out.push_back({"void_fraction", "-", coupling_.voidFraction});
+  if (scalarEnabled_) out.push_back({"scalar", "-", scalar_});
+  return out;
+}
+
+void Solver::checkHealth(long long step, double time) const {
+  auto fail = [&](const std::string& quantity, int i, int j, int k, const Vec3& x, const std::string& detail) {
+    throw DivergenceError(step, time, quantity, fmt::format("fluid cell ({}, {}, {})", i, j, k), x, detail);
+  };
+  for (int c = 0; c < 3; ++c) {
+    const Field& u = u_[c];
+    const auto& pts = u.points();
+    for (int k = 0; k < pts[2]; ++k)
+      for (int j = 0; j < pts[1]; ++j)
+        for (int i = 0; i < pts[0]; ++i)
+          if (!std::isfinite(u(i, j, k))) {
+            Vec3 x = grid_.cellCentre(i, j, k);
+            x[c] -= 0.5 * grid_.spacing[c];
+            fail(std::string("fluid ") + kComponentNames[c], i, j, k, x, fmt::format("value {}", u(i, j, k)));
+          }
+  }
+  for (int k = 0; k < grid_.cells[2]; ++k)
+    for (int j = 0; j < grid_.cells[1]; ++j)
+      for (int i = 0; i < grid_.cells[0]; ++i) {
+        if (!std::isfinite(p_(i, j, k)))
+          fail("fluid pressure", i, j, k, grid_.cellCentre(i, j, k), fmt::format("value {}", p_(i, j, k)));
+        if (scalarEnabled_ && !std::isfinite(scalar_(i, j, k)))
+          fail("fluid scalar", i, j, k, grid_.cellCentre(i, j, k), fmt::format("value {}", scalar_(i, j, k)));
+        if (lastDt_ > 0.0) {
+          double r = 0.0;
+          for (int c = 0; c < (twoD_ ? 2 : 3); ++c) {
+            int hi[3] = {i, j, k};
+            hi[c] += 1;
+            r += 0.5 * std::abs(u_[c](i, j, k) + u_[c](hi[0], hi[1], hi[2])) / grid_.spacing[c];
+          }
+          const double cfl = r * lastDt_;
+          if (cfl > cflLimit_)
+            fail("fluid CFL number", i, j, k, grid_.cellCentre(i, j, k),
+                 fmt::format("CFL {:.3g} > cfl_limit {:.3g} with dt = {:.3g} s", cfl, cflLimit_, lastDt_));
+        }
+      }
+}
+
+void Solver::save(BinaryWriter& out) const {
+  out.putString("fluid-v1");
+  out.put(grid_.cells);
+  out.put(time_);
+  out.put(dtPrev_);
+  out.put(lastDt_);
+  out.put(steps_);
+  out.put(drive_);
+  for (int c = 0; c < 3; ++c) {
+    out.putVector(u_[c].data());
+    out.putVector(uOld_[c].data());
+    out.putVector(convOld_[c].data());
+    out.putVector(coupling_.forceDensity[c].data());
+    out.putVector(coupling_.particleVelocity[c].data());
+  }
+  out.putVector(p_.data());
+  out.putVector(epsOlder_.data());
+  out.putVector(scalar_.data());
+  out.putVector(coupling_.voidFraction.data());
+  out.putVector(coupling_.voidFractionOld.data());
+  out.putVector(coupling_.dragCoefficient.data());
+}
+
+void Solver::load(BinaryReader& in) {
+  if (in.getString() != "fluid-v1") throw CheckpointError("fluid checkpoint: unknown section tag");
+  if (in.get<std::array<int, 3>>() != grid_.cells)
+    throw CheckpointError("fluid checkpoint: grid size differs from the case file");
+  time_ = in.get<double>();
+  dtPrev_ = in.get<double>();
+  lastDt_ = in.get<double>();
+  steps_ = in.get<long long>();
+  drive_ = in.get<double>();
+  auto readInto = [&](Field& f) {
+    auto v = in.getVector<double>();
+    if (v.size() != f.data().size()) throw CheckpointError("fluid checkpoint: field size mismatch");
+    f.data() = std::move(v);
+  };
+  for (int c = 0; c < 3; ++c) {
+    readInto(u_[c]);
+    readInto(uOld_[c]);
+    readInto(convOld_[c]);
+    readInto(coupling_.forceDensity[c]);
+    readInto(coupling_.particleVelocity[c]);
+  }
+  readInto(p_);
+  readInto(epsOlder_);
+  readInto(scalar_);
+  readInto(coupling_.voidFraction);
+  readInto(coupling_.voidFractionOld);
+  readInto(coupling_.dragCoefficient);
+  poissonKey_ = -1.0;
+}
+
+}  // namespace gf::fluid

@@ -1,0 +1,154 @@
+#pragma once
+// Volume-averaged incompressible Navier-Stokes on a staggered (MAC) Cartesian grid.
+//
+//   d(eps)/dt + div(eps u) = 0
+//   rho [d(eps u)/dt + div(eps u u)] = -a grad p + div(eps mu grad u) + eps rho g + F - K (u - u_p)
+//   a = eps (model A) or 1 (model B)                  (seed 000 eq. 5.7; seed 001 lines 31-70)
+//
+// eps = 1, F = K = 0 is exactly the incompressible Navier-Stokes equations. Time stepping: BDF2
+// (variable step) with extrapolated convection (Karniadakis et al. 1991), implicit viscous and
+// drag terms, incremental pressure-correction projection with an eps-weighted Poisson equation
+// solved by multigrid-preconditioned CG. See docs/fluid.md.
+//
+// Contract used by the app and the coupling:
+//   Solver(root, domain, gravity)  reads section 'fluid'
+//   couplingFields()               eps, eps_old, force density, K, mean particle velocity
+//   step(dt), stableTimeStep(), checkHealth(step, time), save/load, timers()
+//   cellVelocity(out), pressureGradient(out), pressure(), cellFields() for output
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/coupling_fields.hpp"
+#include "core/domain.hpp"
+#include "core/grid.hpp"
+#include "core/params.hpp"
+#include "core/serialize.hpp"
+#include "core/timers.hpp"
+#include "fluid/boundary.hpp"
+#include "fluid/multigrid.hpp"
+
+namespace gf::fluid {
+
+enum class MomentumModel { A, B };
+enum class ConvectionScheme { Central, VanLeer };
+enum class DrivingMode { None, PressureGradient, FlowRate };
+
+struct NamedCellField {
+  std::string name;
+  std::string unit;
+  Field field;  // cell-centred
+};
+
+struct StepStatistics {
+  int pressureIterations = 0;
+  double pressureResidual = 0.0;  // relative
+  int momentumIterations = 0;     // summed over components
+  double maxDivergence = 0.0;     // max |div(eps u) + d eps/dt| after projection, 1/s
+};
+
+class Solver {
+ public:
+  Solver(Params& root, const Domain& domain, const Vec3& gravity);
+
+  const CartesianGrid& grid() const { return grid_; }
+  CouplingFields& couplingFields() { return coupling_; }
+  const CouplingFields& couplingFields() const { return coupling_; }
+
+  void step(double dt);
+  /// Largest dt with CFL <= fluid.cfl for the current velocity (max double when at rest).
+  double stableTimeStep() const;
+  void cellVelocity(Field out[3]) const;
+  void pressureGradient(Field out[3]) const;
+  const Field& pressure() const { return p_; }
+  void checkHealth(long long step, double time) const;
+  void save(BinaryWriter& out) const;
+  void load(BinaryReader& in);
+  PhaseTimers& timers() { return timers_; }
+
+  // Read access for output, monitors and tests.
+  const Field& velocity(int component) const { return u_[component]; }
+  const Field& scalar() const { return scalar_; }
+  bool hasScalar() const { return scalarEnabled_; }
+  std::vector<NamedCellField> cellFields() const;
+  double density() const { return rho_; }
+  double viscosity() const { return mu_; }
+  MomentumModel model() const { return model_; }
+  const StepStatistics& lastStep() const { return stats_; }
+  /// Mean driving pressure gradient -dp/dx along the driving axis (imposed or found by flow-rate control), Pa/m.
+  double drivingPressureGradient() const { return drive_; }
+  int drivingAxis() const { return driveAxis_; }
+  bool blocked(int i, int j, int k) const { return blocked_[p_.index(i, j, k)] != 0; }
+  bool twoD() const { return twoD_; }
+  const Boundaries& boundaries() const { return bc_; }
+  double time() const { return time_; }
+  long long stepsDone() const { return steps_; }
+  /// max over cells of |div(eps u) + (eps - eps_old)/dt| for the current velocity and last dt.
+  double maxDivergence() const;
+
+  // Initial conditions (also used by tests): set u^n (= u^{n-1}), p, scalar from functions of position.
+  void setVelocity(const std::function<Vec3(const Vec3&)>& f);
+  void setPressure(const std::function<double(const Vec3&)>& f);
+  void setScalar(const std::function<double(const Vec3&)>& f);
+
+ private:
+  void readParams(Params& fluid, const Domain& domain);
+  void markBlocked(Params& fluid);
+  void buildUnknownMasks();
+  void fillAllGhosts();
+  // momentum.cpp
+  void computeConvection(Field out[3]) const;
+  void assembleMomentum(int c, double dt, double gamma0, double gamma1, double gamma2, double ext1, double ext2);
+  int solveHelmholtz(int c, double dt, double gamma0);
+  void applyHelmholtz(int c, const Field& x, std::vector<double>& y, double dt, double gamma0) const;
+  // projection.cpp
+  void balanceOutflow(double dt);
+  void project(double dt, double gamma0);
+  void controlFlowRate(double dt, double gamma0);
+  double divergenceAt(int i, int j, int k, double dt) const;
+  // scalar.cpp
+  void advanceScalar(double dt);
+
+  CartesianGrid grid_;
+  Domain domain_;
+  Vec3 gravity_;
+  Boundaries bc_;
+  bool twoD_ = false;
+  double rho_ = 1.0, mu_ = 1e-3;
+  MomentumModel model_ = MomentumModel::A;
+  ConvectionScheme scheme_ = ConvectionScheme::VanLeer;
+  double cfl_ = 0.5, cflLimit_ = 1.0;
+  double momentumTolerance_ = 1e-8;
+  int momentumMaxIterations_ = 200;
+  double pressureTolerance_ = 1e-8;
+  int pressureMaxIterations_ = 200;
+  DrivingMode driveMode_ = DrivingMode::None;
+  int driveAxis_ = 0;
+  double drive_ = 0.0;         // -dp/dx applied as body force, Pa/m
+  double bulkVelocity_ = 0.0;  // flow-rate target (mean superficial velocity), m/s
+  bool scalarEnabled_ = false;
+  double scalarDiffusivity_ = 0.0, scalarSource_ = 0.0;
+
+  CouplingFields coupling_;
+  Field u_[3], uOld_[3];        // u^n (after step: u^{n+1}) and u^{n-1}
+  Field conv_[3], convOld_[3];  // convective term N^n, N^{n-1}
+  Field rhs_[3];
+  Field p_, phi_, epsOlder_, scalar_;
+  std::vector<std::uint8_t> blocked_;     // per cell-field point
+  std::vector<std::uint8_t> unknown_[3];  // per face point: solved by the momentum equation
+  std::vector<std::int64_t> unknownList_[3];
+  std::vector<double> krylov_[8];  // r, rhat, p, v, s, t, 1/diag, u^n
+  Field precY_[3], precZ_[3];
+  MultigridPoisson poisson_;
+  double poissonKey_ = -1.0;  // rho gamma0 / dt of the current multigrid setup (-1: rebuild)
+  bool uniformCoupling_ = true;
+  std::vector<double> poissonRhs_, poissonX_;
+
+  double time_ = 0.0, dtPrev_ = 0.0, lastDt_ = 0.0;
+  long long steps_ = 0;
+  StepStatistics stats_;
+  PhaseTimers timers_;
+};
+
+}  // namespace gf::fluid
