@@ -46,6 +46,11 @@ Boundaries Boundaries::read(Params& fluid, const std::array<bool, 3>& periodic, 
     b.scalarFixed = p.choice({"scalar", "-", "passive scalar condition: zero_gradient or fixed"},
                              {"zero_gradient", "fixed"}, "zero_gradient") == "fixed";
     b.scalarValue = p.real({"scalar_value", "-", "passive scalar value where scalar: fixed"}, 0.0);
+    b.rampTime = p.real({"ramp_time", "s",
+                         "inlet/wall velocity multiplied by min(1, t / ramp_time) (linear start-up or "
+                         "fluidisation ramp); 0 = constant",
+                         Range::nonNegative()},
+                        0.0);
     if (type == "wall") b.type = BoundaryType::Wall;
     else if (type == "slip") b.type = BoundaryType::Slip;
     else if (type == "inlet") b.type = BoundaryType::Inlet;
@@ -63,7 +68,7 @@ Boundaries Boundaries::read(Params& fluid, const std::array<bool, 3>& periodic, 
 
 double inletNormalVelocity(const Boundaries& bc, int axis, int side, const CartesianGrid& g, const Vec3& x) {
   const BoundarySide& s = bc.at(axis, side);
-  double u = s.velocity[axis];
+  double u = s.velocity[axis] * rampFactor(s, bc.time);
   if (!s.parabolic) return u;
   for (int b = 0; b < 3; ++b) {
     if (b == axis || bc.periodic(b)) continue;
@@ -138,7 +143,7 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode) {
           switch (side.type) {
             case BoundaryType::Wall:
             case BoundaryType::Inlet: {
-              const double uw = full ? side.velocity[c] : 0.0;
+              const double uw = full ? side.velocity[c] * rampFactor(side, bc.time) : 0.0;
               // Quadratic through wall value, rows 0 and 1: exact for parabolic profiles.
               at(-1) = n >= 2 ? (8.0 * uw - 6.0 * at(0) + at(1)) / 3.0 : 2.0 * uw - at(0);
               at(-2) = n >= 2 ? 2.0 * uw - at(1) : at(-1);

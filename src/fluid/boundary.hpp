@@ -18,13 +18,20 @@ struct BoundarySide {
   double pressure = 0.0;   // pressure outlet, Pa
   bool scalarFixed = false;
   double scalarValue = 0.0;  // Dirichlet value of the passive scalar where scalarFixed
+  double rampTime = 0.0;     // inlet/wall velocity multiplied by min(1, t / rampTime); 0 = no ramp
 };
+
+/// Factor of a side's prescribed velocity at time t: min(1, t / rampTime) (1 without ramp).
+inline double rampFactor(const BoundarySide& s, double t) {
+  return s.rampTime > 0.0 ? (t >= s.rampTime ? 1.0 : (t > 0.0 ? t / s.rampTime : 0.0)) : 1.0;
+}
 
 inline int sideIndex(int axis, int side) { return 2 * axis + side; }
 inline bool isOutlet(BoundaryType t) { return t == BoundaryType::PressureOutlet || t == BoundaryType::Outflow; }
 
 struct Boundaries {
   std::array<BoundarySide, 6> side;
+  double time = 0.0;  // s: time at which prescribed velocities are evaluated (ramps); set by the solver
   const BoundarySide& at(int axis, int s) const { return side[sideIndex(axis, s)]; }
   bool periodic(int axis) const { return side[sideIndex(axis, 0)].type == BoundaryType::Periodic; }
 

@@ -217,6 +217,7 @@ void Solver::setScalar(const std::function<double(const Vec3&)>& f) {
 
 void Solver::step(double dt) {
   ScopedPhase timer(timers_, Phase::Fluid);
+  bc_.time = time_ + dt;  // prescribed (ramped) boundary velocities at the new time level
   fillAllGhosts();
   const auto& eps = coupling_.voidFraction.data();
   const auto& epsOld = coupling_.voidFractionOld.data();
@@ -384,6 +385,7 @@ void Solver::load(BinaryReader& in) {
   if (in.get<std::array<int, 3>>() != grid_.cells)
     throw CheckpointError("fluid checkpoint: grid size differs from the case file");
   time_ = in.get<double>();
+  bc_.time = time_;
   dtPrev_ = in.get<double>();
   lastDt_ = in.get<double>();
   steps_ = in.get<long long>();
