@@ -1,0 +1,73 @@
+// Coupled CFD-DEM bed cases run through the command line (shortened variants of cases/ and
+// validation/cfddem_* items; the full runs and their numbers are in docs/validation.md).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "io/csv_series.hpp"
+#include "run_helper.hpp"
+
+using gf::testing::grainflow;
+using gf::testing::TempDir;
+
+namespace {
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// Ergun (1952), seed 001 eq. 35: pressure drop of a bed of height Hb.
+double ergun(double U, double eps, double d, double Hb, double mu, double rho) {
+  return 150.0 * std::pow(1 - eps, 2) * mu * U * Hb / (std::pow(eps, 3) * d * d) +
+         1.75 * (1 - eps) * rho * U * U * Hb / (std::pow(eps, 3) * d);
+}
+
+}  // namespace
+
+// Fixed simple-cubic bed (eps = 1 - pi/6, d = 2 mm, Hb = 32 mm, water), Gidaspow drag: the pressure
+// gradient inside the bed times Hb is Ergun's pressure drop within 5 % (issue 6) at Re_p = 40, and
+// Newton's third law of the exchange holds to round-off in every coupling step.
+TEST(CoupledBeds, FixedPackedBedFollowsErgun) {
+  TempDir dir;
+  std::string text = gf::testing::readAll(gf::testing::sourcePath("validation/cfddem_packed_bed_ergun/case.yaml"));
+  text = replaced(text, "velocity: [0.0, 0.0, 0.01]", "velocity: [0.0, 0.0, 0.02]");
+  text += "  - type: coupling_balance\n";
+  const auto r = grainflow("run " + dir.write("bed.yaml", text) + " --quiet --threads 1 --output " + dir.file("o"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const auto dp = gf::io::readCsv(dir.file("o/pressure_drop.csv"));
+  const double gradient = dp.rows.back().at(1) / dp.rows.back().at(2);
+  const double expected = ergun(0.02, 1.0 - std::numbers::pi / 6.0, 0.002, 0.032, 1e-3, 1000.0);
+  EXPECT_NEAR(gradient * 0.032, expected, 0.05 * expected);
+  EXPECT_NEAR(dp.rows.back().at(3), 0.02, 1e-9) << "superficial velocity below the bed";
+  const auto balance = gf::io::readCsv(dir.file("o/coupling_balance.csv"));
+  ASSERT_GT(balance.rows.size(), 10u);
+  for (const auto& row : balance.rows) EXPECT_LT(row.at(4), 1e-12) << "relative momentum error at t = " << row.at(0);
+}
+
+// Pseudo-2D bubbling bed of issue 6 (24,750 spheres), first 4 ms: the inlet ramps up, the loose
+// packing starts to fall (mean centre height decreases), every exchange conserves momentum to
+// round-off and the particle volume is deposited completely; the pressure drop is positive and below
+// the weight per area of the bed (the bed is not yet carried by the gas).
+TEST(CoupledBeds, BubblingBedStartsConsistently) {
+  TempDir dir;
+  const auto r = grainflow("run " + gf::testing::sourcePath("cases/cfddem_bubbling_fluidised_bed.yaml") +
+                           " --quiet --threads 1 --end-time 0.004 --output " + dir.file("o"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const auto height = gf::io::readCsv(dir.file("o/bed_height.csv"));
+  EXPECT_LT(height.rows.back().at(2), height.rows.front().at(2));
+  const auto balance = gf::io::readCsv(dir.file("o/coupling_balance.csv"));
+  for (const auto& row : balance.rows) {
+    EXPECT_LT(row.at(4), 1e-12);
+    EXPECT_NEAR(row.at(6), row.at(5), 1e-12 * row.at(5)) << "deposited = particle volume";
+  }
+  // Weight per area: 24750 x pi/6 (2.5 mm)^3 x (2526 - 1.2) kg/m^3 x 9.81 / (0.015 x 0.15 m^2).
+  const double weight = 24750 * std::numbers::pi / 6 * std::pow(0.0025, 3) * 2524.8 * 9.81 / (0.015 * 0.15);
+  const auto dp = gf::io::readCsv(dir.file("o/pressure_drop.csv"));
+  EXPECT_GT(dp.rows.back().at(1), 0.0);
+  EXPECT_LT(dp.rows.back().at(1), weight);
+}
