@@ -297,11 +297,14 @@ void Solver::pressureGradient(Field out[3]) const {
     Field& o = out[c];
     const auto s = p_.stride(c);
     const double inv2h = 0.5 / grid_.spacing[c];
+    // The mean driving gradient (-dp/dx = drive_, applied as a body force) is part of grad p: the
+    // particles must feel it too (e.g. the buoyancy of a suspension in a periodic box).
+    const double mean = (driveMode_ != DrivingMode::None && driveAxis_ == c) ? -drive_ : 0.0;
     parallelFor(static_cast<std::int64_t>(grid_.cells[1]) * grid_.cells[2], [&](std::int64_t line) {
       const int j = static_cast<int>(line % grid_.cells[1]), k = static_cast<int>(line / grid_.cells[1]);
       for (int i = 0; i < grid_.cells[0]; ++i) {
         const std::size_t id = p_.index(i, j, k);
-        o.data()[id] = (twoD_ && c == 2) ? 0.0 : (p_.data()[id + s] - p_.data()[id - s]) * inv2h;
+        o.data()[id] = (twoD_ && c == 2) ? 0.0 : (p_.data()[id + s] - p_.data()[id - s]) * inv2h + mean;
       }
     });
     fillCellGhosts(o, bc_, CellGhostKind::ZeroGradient);

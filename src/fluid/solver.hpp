@@ -60,6 +60,7 @@ class Solver {
   /// Largest dt with CFL <= fluid.cfl for the current velocity (max double when at rest).
   double stableTimeStep() const;
   void cellVelocity(Field out[3]) const;
+  /// Cell-centred grad p, including the mean driving gradient (-drivingPressureGradient()) along the driving axis.
   void pressureGradient(Field out[3]) const;
   const Field& pressure() const { return p_; }
   void checkHealth(long long step, double time) const;

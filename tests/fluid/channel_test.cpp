@@ -53,3 +53,26 @@ TEST(Channel, ImposedFlowRateGivesAnalyticGradient) {
 
 }  // namespace
 }  // namespace gf::fluid
+
+namespace gf::fluid {
+namespace {
+
+// The driving gradient is a body force in the momentum equation, but it is part of grad p for
+// whoever asks for the pressure gradient (the coupling's -V_p grad p force): with an imposed
+// -dp/dx = G the cell-centred gradient is -G everywhere (the periodic part is zero in Poiseuille flow).
+TEST(Channel, PressureGradientIncludesTheDrivingGradient) {
+  auto c = test::makeCase(channelCase("{mode: pressure_gradient, axis: x, pressure_gradient: 3.0}", 8));
+  Solver& s = *c.solver;
+  for (int n = 0; n < 20; ++n) s.step(0.05);
+  Field gp[3];
+  s.pressureGradient(gp);
+  const auto& g = s.grid();
+  for (int j = 0; j < g.cells[1]; ++j)
+    for (int i = 0; i < g.cells[0]; ++i) {
+      EXPECT_NEAR(gp[0](i, j, 0), -3.0, 1e-9);
+      EXPECT_NEAR(gp[1](i, j, 0), 0.0, 1e-9);
+    }
+}
+
+}  // namespace
+}  // namespace gf::fluid
