@@ -304,7 +304,10 @@ void Solver::pressureGradient(Field out[3]) const {
       const int j = static_cast<int>(line % grid_.cells[1]), k = static_cast<int>(line / grid_.cells[1]);
       for (int i = 0; i < grid_.cells[0]; ++i) {
         const std::size_t id = p_.index(i, j, k);
-        o.data()[id] = (twoD_ && c == 2) ? 0.0 : (p_.data()[id + s] - p_.data()[id - s]) * inv2h + mean;
+        // A blocked neighbour has no pressure: mirror the cell's own value (as at walls).
+        const double pp = blocked_[id + s] ? p_.data()[id] : p_.data()[id + s];
+        const double pm = blocked_[id - s] ? p_.data()[id] : p_.data()[id - s];
+        o.data()[id] = (twoD_ && c == 2) ? 0.0 : (pp - pm) * inv2h + mean;
       }
     });
     fillCellGhosts(o, bc_, CellGhostKind::ZeroGradient);
