@@ -70,6 +70,9 @@ TEST(CoupledBeds, BubblingBedStartsConsistently) {
   const auto dp = gf::io::readCsv(dir.file("o/pressure_drop.csv"));
   EXPECT_GT(dp.rows.back().at(1), 0.0);
   EXPECT_LT(dp.rows.back().at(1), weight);
+  // The inlet cells are free of particles (distributor above them): the superficial velocity
+  // entering the bed is the ramped inlet velocity, 1.875 m/s x 4 ms / 0.3 s.
+  EXPECT_NEAR(dp.rows.back().at(3), 1.875 * 0.004 / 0.3, 1e-9);
 }
 
 // Spouted bed of seed 001 (Table 5) with 5000 instead of 175,800 spheres, first 20 ms: the inlet acts
