@@ -36,7 +36,9 @@ void System::readWalls(Params& root) {
   for (Params& w : root.list({"walls", "-", "walls (geometry by type, optional prescribed motion)"})) {
     auto wall = Registry<Wall>::instance().create(w, {"type", "-", "wall type"});
     const std::string name = w.text({"name", "-", "wall name (for monitors)"}, fmt::format("wall{}", wallNames_.size()));
-    const int material = table_.readMaterial(w, {"material", "-", "wall material name"});
+    const int material =
+        table_.readMaterial(w, {"material", "-", "wall material name ('rigid': infinitely stiff, the default)"},
+                            kRigidMaterial);
     WallMotion motion;
     motion.velocity = w.vec3({"velocity", "m/s", "translation velocity of the wall"}, {});
     motion.angularVelocity = w.vec3({"angular_velocity", "rad/s", "angular velocity about 'centre'"}, {});
