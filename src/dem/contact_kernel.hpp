@@ -95,14 +95,16 @@ void particleContactForces(ParticleSet& p, NeighbourList& list, const ContactTab
         }
         const double dist = std::sqrt(dist2);
         ContactGeometry g;
-        g.normal = d / dist;
+        g.normal = (1.0 / dist) * d;
         g.overlap = rsum - dist;
         const Vec3 wj = p.angularVelocity[j];
         g.relativeVelocity = vi - p.velocity[j] - cross(ri * wi + rj * wj, g.normal);
         g.relativeAngularVelocity = wi - wj;
-        g.effectiveRadius = ri * rj / rsum;
-        const double mj = p.mass[j];
-        g.effectiveMass = mi * mj / (mi + mj);
+        // R* = r_i r_j/(r_i + r_j) and m* = m_i m_j/(m_i + m_j) with one division.
+        const double mj = p.mass[j], msum = mi + mj;
+        const double inv = 1.0 / (rsum * msum);
+        g.effectiveRadius = ri * rj * msum * inv;
+        g.effectiveMass = mi * mj * rsum * inv;
         if constexpr (R == RollingLaw::Epsd)
           g.rollingInertia = 1.0 / (1.0 / (1.4 * mi * ri * ri) + 1.0 / (1.4 * mj * rj * rj));
         const ContactResult c = contactForce<N, R, C>(coefficients[ti * types + p.type[j]], g,
