@@ -143,7 +143,7 @@ void System::refresh() {
   std::vector<std::uint32_t> order(particles_.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
   rebuild(std::move(order), list_.rows());
-  computeForces(0.0);
+  computeForces(0.0, 0.0);
 }
 
 bool System::needsRebuild(double particleMove) const {
@@ -185,13 +185,13 @@ void System::rebuild(std::vector<std::uint32_t> order, std::size_t listedRows) {
   ++rebuilds_;
 }
 
-void System::computeForces(double dt) {
+void System::computeForces(double dt, double halfKick) {
   ScopedPhase timer(timers_, Phase::Contacts);
   const WallState walls{&primitives_, &wallMaterial_, &wallVelocity_, &wallAngularVelocity_, &wallCentre_};
   dispatchLaws(table_.normalLaw(), table_.rollingLaw(), table_.cohesionLaw(),
                [&]<NormalLaw N, RollingLaw R, CohesionLaw C>() {
-                 particleContactForces<N, R, C>(particles_, list_, table_, box_, gravity_, dt, buffers_);
-                 if (!primitives_.empty()) wallContactForces<N, R, C>(particles_, wallList_, table_, walls, dt);
+                 contactForcesAndKick<N, R, C>(particles_, list_, wallList_, walls, table_, box_, gravity_, dt,
+                                               halfKick, buffers_);
                });
 }
 
@@ -224,15 +224,7 @@ void System::step(double dt) {
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
     rebuild(std::move(order), std::min(before, list_.rows()));
   }
-  computeForces(dt);
-  {
-    ScopedPhase timer(timers_, Phase::Integration);
-    parallelFor(static_cast<std::int64_t>(p.size()), [&](std::int64_t i) {
-      const double invMass = 1.0 / p.mass[i];
-      p.velocity[i] += (0.5 * dt * invMass) * p.force[i];
-      p.angularVelocity[i] += (0.5 * dt * invMass / (0.4 * p.radius[i] * p.radius[i])) * p.torque[i];
-    });
-  }
+  computeForces(dt, 0.5 * dt);  // includes the closing half kick
   ++steps_;
 }
 
