@@ -83,6 +83,7 @@ void ContactTable::addRigidMaterial() {
   if (materialIndex(kRigidMaterial) >= 0) return;  // the case defines its own
   Material rigid;
   rigid.name = kRigidMaterial;
+  rigid.isBuiltInRigid = true;
   rigid.youngsModulus = std::numeric_limits<double>::infinity();  // E* = E_p / (1 - nu_p^2)
   materials_.push_back(rigid);
 }
@@ -100,9 +101,9 @@ int ContactTable::readMaterial(Params& p, const Key& k, const std::string& defau
   const int index = materialIndex(name);
   if (index < 0) {
     std::string valid;
-    for (const Material& m : materials_) valid += (valid.empty() ? "" : ", ") + m.name;
-    if (materialIndex(kRigidMaterial) < 0) valid += ", " + std::string(kRigidMaterial);
-    p.fail(k.name, "'" + name + "'", "a material in 'materials' (one of: " + valid + ")");
+    for (const Material& m : materials_)
+      if (m.name != kRigidMaterial || !m.isBuiltInRigid) valid += (valid.empty() ? "" : ", ") + m.name;
+    p.fail(k.name, "'" + name + "'", "one of the materials: " + valid + " (walls may also use 'rigid')");
   }
   return index;
 }
