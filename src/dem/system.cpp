@@ -1,4 +1,5 @@
 #include "dem/system.hpp"
+#include "dem/walls/wall_overlap.hpp"
 
 #include <fmt/format.h>
 
@@ -33,7 +34,8 @@ System::System(Params& root, const Domain& domain, const Vec3& gravity)
 
 void System::readWalls(Params& root) {
   const double reachDefault = norm(domain_.size());
-  for (Params& w : root.list({"walls", "-", "walls (geometry by type, optional prescribed motion)"})) {
+  std::vector<Params> wallEntries = root.list({"walls", "-", "walls (geometry by type, optional prescribed motion)"});
+  for (Params& w : wallEntries) {
     auto wall = Registry<Wall>::instance().create(w, {"type", "-", "wall type"});
     const std::string name = w.text({"name", "-", "wall name (for monitors)"}, fmt::format("wall{}", wallNames_.size()));
     const int material =
@@ -79,6 +81,11 @@ void System::readWalls(Params& root) {
     wallGeometryMoves_.push_back(moves);
     wallReach_.push_back(reach);
   }
+  std::vector<bool> fixed(wallNames_.size());
+  for (std::size_t w = 0; w < fixed.size(); ++w)
+    fixed[w] = wallMotion_[w].velocity == Vec3{} && wallMotion_[w].angularVelocity == Vec3{} &&
+               std::isinf(wallActiveUntil_[w]);
+  checkWallsDoNotOverlap(wallEntries, referencePrimitives_, wallNames_, fixed);
   primitives_ = referencePrimitives_;
   wallVelocity_.resize(wallNames_.size());
   wallAngularVelocity_.resize(wallNames_.size());
