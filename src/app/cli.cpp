@@ -1,10 +1,178 @@
 #include "app/cli.hpp"
 
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "app/docs.hpp"
+#include "app/simulation.hpp"
+#include "core/error.hpp"
+#include "core/parallel.hpp"
+#include "grainflow_version.hpp"
 
 namespace gf::app {
-int runCommandLine(int argc, char** argv) {
-  std::puts("grainflow");
-  return 0;
+
+namespace {
+
+void printError(const std::string& message) { std::fprintf(stderr, "grainflow: %s\n", message.c_str()); }
+
+int commandCheck(const std::string& caseFile, int threads) {
+  setThreadCount(threads);
+  RunOptions options;
+  auto simulation = Simulation::fromFile(caseFile, options);
+  std::fputs(fmt::format("# {}: valid case '{}'\n", caseFile, simulation->settings().name).c_str(), stdout);
+  std::fputs(simulation->resolvedCase().c_str(), stdout);
+  const auto& particles = simulation->dem().particles();
+  std::fputs(fmt::format("# particles: {}\n", particles.size()).c_str(), stdout);
+  if (particles.size() > 0)
+    std::fputs(fmt::format("# DEM step {:g} s = {:.1f} % of the Rayleigh time {:.4g} s\n", simulation->settings().demStep,
+                           100.0 * simulation->settings().demStep / simulation->dem().rayleighTime(),
+                           simulation->dem().rayleighTime())
+                   .c_str(),
+               stdout);
+  return kExitOk;
 }
+
+int commandRun(const std::string& caseFile, const RunOptions& options) {
+  setThreadCount(options.threads);
+  auto simulation = Simulation::fromFile(caseFile, options);
+  simulation->prepare();
+  const auto& s = simulation->settings();
+  if (!options.quiet)
+    std::printf("grainflow %s: case '%s', %zu particles, %d thread(s), output in %s\n", GRAINFLOW_VERSION,
+                s.name.c_str(), simulation->dem().particles().size(), threadCount(), s.outputDirectory.c_str());
+  std::fflush(stdout);
+  const auto start = std::chrono::steady_clock::now();
+  RunStatus status;
+  try {
+    status = simulation->run();
+  } catch (const DivergenceError& e) {
+    printError(e.what());
+    const std::string last = simulation->lastGoodCheckpoint();
+    printError(last.empty() ? "no checkpoint had been written before the divergence"
+                            : fmt::format("last good checkpoint kept: {}", last));
+    return kExitDiverged;
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (status == RunStatus::Interrupted) {
+    printError(fmt::format("interrupted at t = {:.6g} s (step {}); checkpoint written to {} (continue with --restart)",
+                           simulation->time(), simulation->step(), simulation->checkpointPath()));
+    return kExitInterrupted;
+  }
+  if (!options.quiet) {
+    std::printf("\n%s", simulation->timingTable(wall).c_str());
+    std::printf("\noutput written to %s/\n", s.outputDirectory.c_str());
+    if (s.outputInterval > 0.0 && s.writeParticles)
+      std::printf("view it in ParaView: paraview %s/particles.pvd  (Glyph filter, scale by 'radius' x2, sphere glyphs)\n",
+                  s.outputDirectory.c_str());
+    std::printf("monitors (CSV) are in the same directory; restart file: %s\n", simulation->checkpointPath().c_str());
+  }
+  return kExitOk;
+}
+
+int commandBench(const std::string& name, int threads) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  const fs::path bench = self.parent_path() / "bench" / "grainflow_bench";
+  if (!fs::exists(bench)) {
+    printError(fmt::format("benchmark executable not found at {} (build with -DGRAINFLOW_BUILD_BENCH=ON)", bench.string()));
+    return kExitIo;
+  }
+  if (threads > 0) setenv("OMP_NUM_THREADS", std::to_string(threads).c_str(), 1);
+  std::string filter = "--benchmark_filter=" + (name.empty() ? std::string(".") : name);
+  std::string counters = "--benchmark_counters_tabular=true";
+  execl(bench.c_str(), bench.c_str(), filter.c_str(), counters.c_str(), static_cast<char*>(nullptr));
+  printError(fmt::format("cannot start {}", bench.string()));
+  return kExitIo;
+}
+
+}  // namespace
+
+int runCommandLine(int argc, char** argv) {
+  CLI::App app{"grainflow: CFD-DEM solver (DEM particles coupled to volume-averaged incompressible flow)"};
+  bool showVersion = false;
+  app.add_flag("--version", showVersion, "print the version and exit");
+  app.require_subcommand(0, 1);
+
+  std::string caseFile;
+  RunOptions runOptions;
+  std::string outputDirectory, restartFile;
+  double endTime = -1.0;
+  auto* run = app.add_subcommand("run", "run a case");
+  run->add_option("case", caseFile, "case file (YAML)")->required();
+  run->add_option("--threads", runOptions.threads, "OpenMP threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  run->add_option("--output", outputDirectory, "output directory (overrides output.directory)");
+  run->add_option("--end-time", endTime, "simulated end time in s (overrides time.end)")->check(CLI::NonNegativeNumber);
+  run->add_option("--restart", restartFile, "continue from this checkpoint file");
+  run->add_flag("--overwrite", runOptions.overwrite, "replace the output of an earlier run in the output directory");
+  run->add_flag("--quiet", runOptions.quiet, "no progress lines or summary");
+
+  int checkThreads = 0;
+  auto* check = app.add_subcommand("check", "validate a case file and print it with all defaults and units");
+  check->add_option("case", caseFile, "case file (YAML)")->required();
+  check->add_option("--threads", checkThreads, "OpenMP threads")->check(CLI::NonNegativeNumber);
+
+  std::string benchName;
+  int benchThreads = 0;
+  auto* bench = app.add_subcommand("bench", "run the benchmarks (all, or those matching NAME)");
+  bench->add_option("name", benchName, "benchmark name filter (regular expression)");
+  bench->add_option("--threads", benchThreads, "OpenMP threads")->check(CLI::NonNegativeNumber);
+
+  auto* docs = app.add_subcommand("docs", "print the case-file reference (Markdown), generated from the schema");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitUsage;
+  }
+
+  if (showVersion) {
+    std::printf("grainflow %s\n", GRAINFLOW_VERSION);
+    return kExitOk;
+  }
+  if (app.get_subcommands().empty()) {
+    std::fputs(app.help().c_str(), stderr);
+    return kExitUsage;
+  }
+  spdlog::set_pattern("grainflow: %l: %v");
+  try {
+    if (*run) {
+      if (!outputDirectory.empty()) runOptions.outputDirectory = outputDirectory;
+      if (!restartFile.empty()) runOptions.restartFile = restartFile;
+      if (endTime >= 0.0) runOptions.endTime = endTime;
+      return commandRun(caseFile, runOptions);
+    }
+    if (*check) return commandCheck(caseFile, checkThreads);
+    if (*bench) return commandBench(benchName, benchThreads);
+    if (*docs) {
+      std::fputs(caseFileReference().c_str(), stdout);
+      return kExitOk;
+    }
+  } catch (const CaseError& e) {
+    printError(e.what());
+    return kExitInvalidCase;
+  } catch (const CheckpointError& e) {
+    printError(e.what());
+    return kExitCheckpoint;
+  } catch (const DivergenceError& e) {
+    printError(e.what());
+    return kExitDiverged;
+  } catch (const Error& e) {
+    printError(e.what());
+    return kExitIo;
+  } catch (const std::filesystem::filesystem_error& e) {
+    printError(e.what());
+    return kExitIo;
+  }
+  return kExitUsage;
+}
+
 }  // namespace gf::app

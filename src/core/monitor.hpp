@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/registry.hpp"
+#include "core/serialize.hpp"
 
 namespace gf {
 
@@ -39,6 +40,10 @@ class Monitor {
   virtual ~Monitor() = default;
   virtual std::vector<MonitorColumn> columns() const = 0;
   virtual std::vector<double> sample(const RunState& state) = 0;
+  /// Monitors that accumulate (e.g. mass through a plane) save and restore their state, so a
+  /// restarted run writes the same numbers as an uninterrupted one.
+  virtual void save(BinaryWriter& out) const {}
+  virtual void load(BinaryReader& in) {}
 };
 
 }  // namespace gf

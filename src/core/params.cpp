@@ -95,13 +95,14 @@ std::string formatVec(const Vec3& v) { return fmt::format("[{:g}, {:g}, {:g}]", 
 struct Params::Section {
   YAML::Node node;     // the map (undefined for an absent section)
   std::string prefix;  // dotted path of this section ("" for the root)
-  std::set<std::string> queried;
+  std::set<std::string>* queried = nullptr;  // shared by every reader of the same map
 };
 
 struct Params::Shared {
   std::string file;
   bool documenting = false;
   std::vector<std::shared_ptr<Section>> sections;  // every map visited, in order
+  std::map<std::string, std::set<std::string>> queriedByPrefix;  // keys asked for, per section path
   std::vector<ResolvedKey> resolved;
   std::vector<KeyDoc> docs;
   std::set<std::string> documentedPaths;
@@ -109,6 +110,7 @@ struct Params::Shared {
 
 Params::Params(std::shared_ptr<Shared> shared, std::shared_ptr<Section> section)
     : shared_(std::move(shared)), section_(std::move(section)) {
+  section_->queried = &shared_->queriedByPrefix[section_->prefix];
   shared_->sections.push_back(section_);
 }
 Params::~Params() = default;
@@ -198,7 +200,7 @@ void Params::fail(std::string_view key, const std::string& found, const std::str
   throw CaseError(location(key), path(key), found, expected);
 }
 
-void Params::markQueried(std::string_view key) const { section_->queried.insert(std::string(key)); }
+void Params::markQueried(std::string_view key) const { section_->queried->insert(std::string(key)); }
 
 void Params::document(const Key& k, std::string type, std::string defaultValue, std::string allowed) const {
   // In documentation mode, list items are all documented under "name[]".
@@ -541,8 +543,8 @@ void Params::checkUnknownKeys() const {
     if (!map.IsDefined() || !map.IsMap()) continue;
     for (auto it = map.begin(); it != map.end(); ++it) {
       const std::string key = it->first.Scalar();
-      if (section->queried.count(key)) continue;
-      std::vector<std::string> valid(section->queried.begin(), section->queried.end());
+      if (section->queried->count(key)) continue;
+      std::vector<std::string> valid(section->queried->begin(), section->queried->end());
       const std::string suggestion = closestMatch(key, valid);
       const std::string where = section->prefix.empty() ? key : section->prefix + "." + key;
       throw CaseError(locationOf(shared_->file, it->first), where,

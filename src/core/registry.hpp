@@ -50,7 +50,8 @@ class Registry {
 
   /// Reads `modelKey` from `section` (one of the registered names) and builds that model
   /// from the same section. In documentation mode every registered model documents its keys.
-  std::unique_ptr<Interface> create(Params& section, const Key& modelKey, const std::string& defaultName = "") {
+  std::unique_ptr<Interface> create(Params& section, const Key& modelKey, const std::string& defaultName = "",
+                                    std::string* chosenName = nullptr) {
     const std::vector<std::string> valid = names();
     if (section.documenting()) {
       section.choice(modelKey, valid, defaultName);
@@ -63,6 +64,7 @@ class Registry {
     }
     const std::string name =
         defaultName.empty() ? section.choice(modelKey, valid) : section.choice(modelKey, valid, defaultName);
+    if (chosenName != nullptr) *chosenName = name;
     return entries_.at(name).make(section);
   }
 

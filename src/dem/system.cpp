@@ -97,7 +97,7 @@ double hertzNormalForce(double overlap, double normalVelocity, double effectiveE
   const double logE = std::log(restitution);
   const double beta = logE / std::sqrt(logE * logE + std::numbers::pi * std::numbers::pi);
   const double elastic = 4.0 / 3.0 * effectiveE * sqrtRd * overlap;
-  const double damping = -2.0 * std::sqrt(5.0 / 6.0) * beta * std::sqrt(stiffness * effectiveMass) * normalVelocity;
+  const double damping = 2.0 * std::sqrt(5.0 / 6.0) * beta * std::sqrt(stiffness * effectiveMass) * normalVelocity;
   return elastic + damping;
 }
 }  // namespace

@@ -1,0 +1,105 @@
+// Coupling cost per particle and coupling step: 25,000 particles (d = 2 mm) in the lower half of
+// a pseudo-2D bed on a 2 x 30 x 90 grid (5 mm cells). Reports ns per particle per coupling step
+// for the void fraction (stencils + eps), the particle forces, and the fluid sources.
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <string>
+
+#include "core/coupling_fields.hpp"
+#include "core/params.hpp"
+#include "coupling/coupler.hpp"
+#include "dem/particles.hpp"
+
+namespace {
+
+using namespace gf;
+
+constexpr int kParticles = 25000;
+const char* kSchemes[] = {"pcm", "divided", "kernel", "big_particle"};
+
+struct Bed {
+  CartesianGrid grid;
+  dem::ParticleSet particles;
+  Field u[3], gradP[3];
+  CouplingFields fields;
+  Bed() {
+    grid.cells = {2, 30, 90};
+    grid.spacing = {0.005, 0.005, 0.005};
+    std::mt19937_64 rng(42);
+    std::uniform_real_distribution<double> x(0.001, 0.009), y(0.001, 0.149), z(0.001, 0.224), v(-0.1, 0.1);
+    for (int i = 0; i < kParticles; ++i) particles.add(i, 0, 0.001, 2500.0, {x(rng), y(rng), z(rng)}, {v(rng), v(rng), v(rng)});
+    for (int a = 0; a < 3; ++a) {
+      u[a] = Field(grid);
+      gradP[a] = Field(grid);
+    }
+    for (auto& val : u[2].data()) val = 0.5;
+    for (auto& val : gradP[2].data()) val = -9810.0;
+    fields = CouplingFields(grid);
+  }
+  coupling::FluidView view() const {
+    coupling::FluidView f;
+    for (int a = 0; a < 3; ++a) {
+      f.velocity[a] = &u[a];
+      f.pressureGradient[a] = &gradP[a];
+    }
+    f.density = 1000.0;
+    f.viscosity = 1e-3;
+    f.timeStep = 1e-4;
+    return f;
+  }
+};
+
+std::unique_ptr<coupling::Coupler> makeCoupler(const Bed& bed, const std::string& scheme, const std::string& extra) {
+  Params p = Params::loadString("coupling:\n  void_fraction: " + scheme + "\n" + extra, "bench.yaml");
+  return std::make_unique<coupling::Coupler>(p, bed.grid, std::array<bool, 3>{true, false, false}, Vec3{0, 0, -9.81});
+}
+
+void setCounter(benchmark::State& state) {
+  // seconds per particle and coupling step (printed with SI prefix, e.g. "95n" = 95 ns)
+  state.counters["ns_per_particle_step"] = benchmark::Counter(
+      static_cast<double>(kParticles), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void BM_CouplingVoidFraction(benchmark::State& state) {
+  Bed bed;
+  auto c = makeCoupler(bed, kSchemes[state.range(0)], "");
+  for (auto _ : state) c->computeVoidFraction(bed.particles, bed.fields);
+  state.SetLabel(kSchemes[state.range(0)]);
+  setCounter(state);
+}
+
+void BM_CouplingFullStep(benchmark::State& state) {
+  // void fraction + drag (Di Felice) + pressure + viscous forces + semi-implicit sources
+  Bed bed;
+  auto c = makeCoupler(bed, kSchemes[state.range(0)], "  interpolation: trilinear\n");
+  const auto view = bed.view();
+  for (auto _ : state) {
+    c->computeVoidFraction(bed.particles, bed.fields);
+    c->computeParticleForces(view, bed.fields, bed.particles);
+    c->fillFluidSources(bed.fields);
+  }
+  state.SetLabel(kSchemes[state.range(0)]);
+  setCounter(state);
+}
+
+void BM_CouplingForcesAllOn(benchmark::State& state) {
+  // forces and sources only, every force on (lifts, virtual mass, torque), divided scheme
+  Bed bed;
+  auto c = makeCoupler(bed, "divided",
+                       "  forces:\n    virtual_mass: true\n    saffman_mei_lift: true\n    magnus_lift: true\n"
+                       "    fluid_torque: true\n");
+  const auto view = bed.view();
+  c->computeVoidFraction(bed.particles, bed.fields);
+  for (auto _ : state) {
+    c->computeParticleForces(view, bed.fields, bed.particles);
+    c->fillFluidSources(bed.fields);
+  }
+  setCounter(state);
+}
+
+}  // namespace
+
+BENCHMARK(BM_CouplingVoidFraction)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CouplingFullStep)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CouplingForcesAllOn)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -1,0 +1,320 @@
+#include "app/simulation.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cmath>
+#include <filesystem>
+
+#include "app/progress.hpp"
+#include "core/parallel.hpp"
+#include "core/registry.hpp"
+#include "core/serialize.hpp"
+#include "io/atomic_file.hpp"
+#include "io/checkpoint.hpp"
+
+namespace gf::app {
+
+namespace fs = std::filesystem;
+
+// ------------------------------------------------------------------ case settings
+
+CaseSettings CaseSettings::read(Params& root, const std::string& caseFile) {
+  CaseSettings s;
+  Params info = root.section({"case", "-", "name and description of the case"});
+  s.name = info.text({"name", "-", "case name (default: file name without extension)"},
+                     fs::path(caseFile).stem().string());
+  info.text({"description", "-", "free text describing the case"}, "");
+  s.gravity = root.vec3({"gravity", "m/s^2", "gravitational acceleration"}, {0.0, 0.0, -9.81});
+
+  Params time = root.requiredSection({"time", "-", "time stepping"});
+  s.endTime = time.real({"end", "s", "simulated end time", Range::nonNegative()});
+  s.demStep = time.real({"dem_step", "s", "DEM time step (checked against the Rayleigh time)", Range::positive()});
+  s.demStepsPerCouplingStep = static_cast<int>(time.integer(
+      {"coupling_interval", "-", "DEM steps per fluid (coupling) step", Range::atLeast(1)}, 1));
+
+  Params output = root.section({"output", "-", "field output (VTK) and output directory"});
+  s.outputDirectory = output.text({"directory", "-", "output directory (relative to the working directory)"},
+                                  "output/" + s.name);
+  s.outputInterval = output.real({"interval", "s", "simulated time between VTK outputs; 0 = none", Range::nonNegative()}, 0.0);
+  s.writeParticles = output.boolean({"particles", "-", "write particles (.vtu + particles.pvd)"}, true);
+  s.writeFluid = output.boolean({"fluid", "-", "write fluid cell fields (.vti + fluid.pvd)"}, true);
+
+  Params checkpoint = root.section({"checkpoint", "-", "restart files"});
+  s.checkpointInterval = checkpoint.integer(
+      {"interval_steps", "-", "DEM steps between checkpoints; 0 = only at the end and on SIGINT/SIGTERM",
+       Range::nonNegative()},
+      0);
+
+  Params run = root.section({"run", "-", "run control"});
+  s.progressInterval = run.real({"progress_interval", "s", "wall time between progress lines when not on a terminal",
+                                 Range::positive()},
+                                10.0);
+  s.healthCheckInterval = run.integer(
+      {"health_check_interval", "-", "DEM steps between NaN / out-of-domain checks", Range::atLeast(1)}, 1);
+  return s;
+}
+
+// ------------------------------------------------------------------ fingerprint
+
+std::uint64_t fingerprintOf(const std::vector<ResolvedKey>& keys) {
+  std::uint64_t hash = fnv1a("grainflow-case", 14);
+  for (const ResolvedKey& k : keys) {
+    const std::string& p = k.path;
+    if (p.rfind("output", 0) == 0 || p.rfind("checkpoint", 0) == 0 || p.rfind("monitors", 0) == 0 ||
+        p.rfind("run.", 0) == 0 || p == "time.end" || p.rfind("case.description", 0) == 0)
+      continue;
+    hash = fnv1a(p.data(), p.size(), hash);
+    hash = fnv1a(k.value.data(), k.value.size(), hash);
+  }
+  return hash;
+}
+
+std::string formatResolvedCase(const std::vector<ResolvedKey>& keys) {
+  std::string out;
+  for (const ResolvedKey& k : keys)
+    out += fmt::format("{}: {}{}{}\n", k.path, k.value, k.unit == "-" ? "" : fmt::format("  # [{}]", k.unit),
+                       k.fromDefault ? (k.unit == "-" ? "  # (default)" : " (default)") : "");
+  return out;
+}
+
+// ------------------------------------------------------------------ signals
+
+namespace {
+std::atomic<int> gSignal{0};
+extern "C" void onSignal(int sig) { gSignal.store(sig); }
+}  // namespace
+
+void installSignalHandlers() {
+  gSignal.store(0);
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+}
+int pendingSignal() { return gSignal.load(); }
+
+// ------------------------------------------------------------------ construction
+
+Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptions& options)
+    : options_(options), caseFile_(caseFile) {
+  settings_ = CaseSettings::read(root, caseFile);
+  if (options.endTime) settings_.endTime = *options.endTime;
+  if (options.outputDirectory) settings_.outputDirectory = *options.outputDirectory;
+  domain_ = Domain::read(root);
+  dem_ = std::make_unique<dem::System>(root, domain_, settings_.gravity);
+  checkTimeStep(root);
+
+  for (Params& m : root.list({"monitors", "-", "quantities written as CSV time series (one file per monitor)"})) {
+    std::string type = "monitor";
+    auto monitor = Registry<Monitor>::instance().create(m, {"type", "-", "monitor type"}, "", &type);
+    std::string name = m.text({"name", "-", "file name of the monitor (default: its type)"}, type);
+    const double interval = m.real({"interval", "s", "sampling interval; 0 = every coupling step", Range::nonNegative()},
+                                   settings_.outputInterval);
+    if (root.documenting()) continue;
+    for (const MonitorSlot& other : monitors_)
+      if (other.name == name) m.fail("name", "'" + name + "' used twice", "a unique monitor name");
+    auto columns = monitor->columns();
+    monitors_.push_back({name, interval, std::move(monitor),
+                         io::CsvSeries((fs::path(settings_.outputDirectory) / (name + ".csv")).string(), columns)});
+  }
+  nextMonitorTime_.assign(monitors_.size(), 0.0);
+  fingerprint_ = fingerprintOf(root.resolved());
+  resolvedCaseText_ = formatResolvedCase(root.resolved());
+  particleSeries_ = io::PvdCollection((fs::path(settings_.outputDirectory) / "particles.pvd").string());
+}
+
+Simulation::~Simulation() = default;
+
+std::unique_ptr<Simulation> Simulation::fromFile(const std::string& caseFile, const RunOptions& options) {
+  Params root = Params::loadFile(caseFile);
+  auto simulation = std::make_unique<Simulation>(root, caseFile, options);
+  root.checkUnknownKeys();
+  return simulation;
+}
+
+void Simulation::checkTimeStep(Params& root) {
+  if (root.documenting() || dem_->particles().size() == 0) return;
+  // Rayleigh criterion (e.g. seed 000 lines 957-1000): dt above 20 % of the Rayleigh time is
+  // risky, above 50 % the contacts are not resolved.
+  const double rayleigh = dem_->rayleighTime();
+  const double ratio = settings_.demStep / rayleigh;
+  Params time = root.section({"time"});
+  if (ratio > 0.5)
+    time.fail("dem_step", fmt::format("{:g} s = {:.0f} % of the Rayleigh time {:.3g} s", settings_.demStep, 100 * ratio, rayleigh),
+              fmt::format("at most 50 % of the Rayleigh time (<= {:.3g} s; 10-20 % recommended)", 0.5 * rayleigh));
+  if (ratio > 0.2)
+    spdlog::warn("time.dem_step = {:g} s is {:.0f} % of the Rayleigh time {:.3g} s (recommended <= 20 %)",
+                 settings_.demStep, 100 * ratio, rayleigh);
+}
+
+// ------------------------------------------------------------------ output directory and restart
+
+std::string Simulation::checkpointPath() const {
+  return (fs::path(settings_.outputDirectory) / "checkpoint.bin").string();
+}
+
+void Simulation::prepare() {
+  const fs::path dir(settings_.outputDirectory);
+  std::error_code ec;
+  const bool restarting = options_.restartFile.has_value();
+  if (fs::exists(dir / "run.yaml", ec) && !restarting && !options_.overwrite)
+    throw Error(fmt::format("output directory '{}' already holds a run (run.yaml); pass --overwrite to replace it "
+                            "or --output to choose another directory",
+                            dir.string()));
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw Error(fmt::format("output directory '{}' cannot be created: {}", dir.string(),
+                            ec ? ec.message() : "a file of that name exists"));
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw Error(fmt::format("output directory '{}' is not writable", dir.string()));
+  if (restarting) {
+    restoreCheckpoint(*options_.restartFile);
+  } else if (options_.overwrite) {
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      const std::string ext = entry.path().extension().string();
+      if (ext == ".vtu" || ext == ".vti" || ext == ".pvd" || ext == ".csv" || ext == ".bin") fs::remove(entry.path());
+    }
+  }
+  io::writeFileAtomically((dir / "run.yaml").string(),
+                          fmt::format("# grainflow resolved case ({}), every key with its value and unit\n{}",
+                                      caseFile_, resolvedCaseText_));
+}
+
+void Simulation::writeCheckpoint(const std::string& path) const {
+  BinaryWriter out;
+  out.put(step_);
+  out.put(outputCount_);
+  out.put(nextOutputTime_);
+  out.putVector(nextMonitorTime_);
+  dem_->save(out);
+  for (const MonitorSlot& m : monitors_) m.monitor->save(out);
+  io::writeCheckpoint(path, fingerprint_, out);
+}
+
+void Simulation::restoreCheckpoint(const std::string& path) {
+  const std::vector<char> payload = io::readCheckpoint(path, fingerprint_);
+  BinaryReader in(payload.data(), payload.size());
+  step_ = in.get<long long>();
+  outputCount_ = in.get<long long>();
+  nextOutputTime_ = in.get<double>();
+  nextMonitorTime_ = in.getVector<double>();
+  if (nextMonitorTime_.size() != monitors_.size())
+    throw CheckpointError(fmt::format("checkpoint '{}' has {} monitors, the case has {}", path, nextMonitorTime_.size(),
+                                      monitors_.size()));
+  dem_->load(in);
+  for (MonitorSlot& m : monitors_) m.monitor->load(in);
+  if (!in.atEnd()) throw CheckpointError(fmt::format("checkpoint '{}' has trailing data (written by another case?)", path));
+  particleSeries_.load();
+  particleSeries_.truncateAfter(time());
+  for (MonitorSlot& m : monitors_) m.series.resumeFrom(time());
+  lastCheckpoint_ = path;
+}
+
+// ------------------------------------------------------------------ the time loop
+
+void Simulation::advance() {
+  // One coupling step. Data flows one way (seed 000, unresolved CFD-DEM algorithm; seed 001,
+  // coupling scheme): fluid -> coupling (void fraction, forces on particles) -> DEM substeps
+  // -> coupling (exchange fields) -> fluid.
+  for (int s = 0; s < settings_.demStepsPerCouplingStep; ++s) dem_->step(settings_.demStep);
+  step_ += settings_.demStepsPerCouplingStep;
+}
+
+RunState Simulation::state() const { return RunState{time(), step_, dem_.get(), nullptr, nullptr}; }
+
+void Simulation::checkHealth() const { dem_->checkHealth(step_, time()); }
+
+void Simulation::writeOutput() {
+  ScopedPhase timer(appTimers_, Phase::Output);
+  const fs::path dir(settings_.outputDirectory);
+  if (settings_.writeParticles) {
+    const std::string file = fmt::format("particles_{:06d}.vtu", outputCount_);
+    io::writeFileAtomically((dir / file).string(), io::particlesVtu(dem_->particles()));
+    particleSeries_.add(time(), file);
+  }
+  ++outputCount_;
+  nextOutputTime_ = static_cast<double>(outputCount_) * settings_.outputInterval;
+}
+
+void Simulation::sampleMonitors(bool force) {
+  ScopedPhase timer(appTimers_, Phase::Output);
+  const RunState s = state();
+  const double tolerance = 0.5 * settings_.demStep;
+  for (std::size_t m = 0; m < monitors_.size(); ++m) {
+    if (!force && s.time + tolerance < nextMonitorTime_[m]) continue;
+    monitors_[m].series.addRow(s.time, monitors_[m].monitor->sample(s));
+    const double interval = monitors_[m].interval;
+    nextMonitorTime_[m] = interval > 0.0 ? (std::floor((s.time + tolerance) / interval) + 1.0) * interval : 0.0;
+  }
+}
+
+void Simulation::flushMonitors() const {
+  for (const MonitorSlot& m : monitors_) m.series.flush();
+}
+
+RunStatus Simulation::run() {
+  installSignalHandlers();
+  const long long totalSteps = std::llround(settings_.endTime / settings_.demStep);
+  ProgressReporter progress(settings_.endTime, settings_.progressInterval, options_.quiet);
+  if (step_ == 0) {
+    checkHealth();
+    sampleMonitors(true);
+    if (settings_.outputInterval > 0.0) writeOutput();
+  }
+  long long nextCheckpointStep =
+      settings_.checkpointInterval > 0 ? (step_ / settings_.checkpointInterval + 1) * settings_.checkpointInterval : -1;
+  const double outputTolerance = 0.5 * settings_.demStep;
+
+  while (step_ < totalSteps) {
+    advance();
+    if (step_ % settings_.healthCheckInterval == 0) checkHealth();
+    sampleMonitors(false);
+    if (settings_.outputInterval > 0.0 && time() + outputTolerance >= nextOutputTime_) writeOutput();
+    if (nextCheckpointStep > 0 && step_ >= nextCheckpointStep) {
+      checkHealth();
+      ScopedPhase timer(appTimers_, Phase::Output);
+      writeCheckpoint(checkpointPath());
+      flushMonitors();
+      lastCheckpoint_ = checkpointPath();
+      nextCheckpointStep += settings_.checkpointInterval;
+    }
+    if (pendingSignal() != 0) {
+      checkHealth();
+      writeCheckpoint(checkpointPath());
+      lastCheckpoint_ = checkpointPath();
+      flushMonitors();
+      progress.finish(time());
+      return RunStatus::Interrupted;
+    }
+    progress.update(time(), step_);
+  }
+  checkHealth();
+  writeCheckpoint(checkpointPath());
+  lastCheckpoint_ = checkpointPath();
+  flushMonitors();
+  progress.finish(time());
+  return RunStatus::Finished;
+}
+
+// ------------------------------------------------------------------ report
+
+std::string Simulation::timingTable(double wallSeconds) const {
+  PhaseTimers total = dem_->timers();
+  total.add(Phase::Output, appTimers_.seconds(Phase::Output));
+  std::string out = fmt::format("{:<18} {:>10} {:>7}\n", "phase", "wall [s]", "share");
+  double accounted = 0.0;
+  for (int p = 0; p < static_cast<int>(Phase::Count); ++p) {
+    const double s = total.seconds(static_cast<Phase>(p));
+    accounted += s;
+    out += fmt::format("{:<18} {:>10.3f} {:>6.1f}%\n", kPhaseNames[p], s, wallSeconds > 0 ? 100.0 * s / wallSeconds : 0.0);
+  }
+  const double other = std::max(0.0, wallSeconds - accounted);
+  out += fmt::format("{:<18} {:>10.3f} {:>6.1f}%\n", "other", other, wallSeconds > 0 ? 100.0 * other / wallSeconds : 0.0);
+  out += fmt::format("{:<18} {:>10.3f}\n", "total", wallSeconds);
+  return out;
+}
+
+}  // namespace gf::app

@@ -1,0 +1,122 @@
+#pragma once
+// A complete run: reads the case, owns the solver parts, advances the coupled time loop,
+// writes output, monitors and checkpoints.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/domain.hpp"
+#include "core/monitor.hpp"
+#include "core/params.hpp"
+#include "core/timers.hpp"
+#include "dem/system.hpp"
+#include "io/csv_series.hpp"
+#include "io/vtk.hpp"
+
+namespace gf::app {
+
+struct RunOptions {
+  int threads = 0;                        // 0 = OpenMP default
+  std::optional<std::string> outputDirectory;
+  std::optional<double> endTime;          // s, overrides time.end
+  std::optional<std::string> restartFile;
+  bool overwrite = false;
+  bool quiet = false;
+};
+
+/// Top-level case keys owned by the application.
+struct CaseSettings {
+  std::string name;
+  Vec3 gravity;
+  double endTime = 0.0;             // s
+  double demStep = 0.0;             // s
+  int demStepsPerCouplingStep = 1;  // DEM substeps per fluid step
+  std::string outputDirectory;
+  double outputInterval = 0.0;      // s, 0 = no field output
+  bool writeParticles = true;
+  bool writeFluid = true;
+  long long checkpointInterval = 0; // DEM steps, 0 = only on signals and at the end
+  double progressInterval = 10.0;   // s of wall time between plain progress lines
+  long long healthCheckInterval = 1;
+
+  static CaseSettings read(Params& root, const std::string& caseFile);
+};
+
+struct MonitorSlot {
+  std::string name;
+  double interval = 0.0;  // s
+  std::unique_ptr<Monitor> monitor;
+  io::CsvSeries series;
+};
+
+enum class RunStatus { Finished, Interrupted };
+
+class Simulation {
+ public:
+  /// Reads and validates the whole case; throws CaseError. Touches no file.
+  Simulation(Params& root, const std::string& caseFile, const RunOptions& options);
+  ~Simulation();
+
+  /// Loads, validates (including unknown keys) and builds a case from a file.
+  static std::unique_ptr<Simulation> fromFile(const std::string& caseFile, const RunOptions& options);
+
+  /// Creates the output directory (refusing to overwrite another run unless allowed) and
+  /// restores a checkpoint if one was given. Throws gf::Error with a clear message.
+  void prepare();
+  /// Runs to the end time (or until SIGINT/SIGTERM, after writing a checkpoint).
+  RunStatus run();
+
+  /// One coupling step: fluid -> coupling -> DEM substeps -> coupling -> fluid.
+  void advance();
+
+  void writeCheckpoint(const std::string& path) const;
+  void restoreCheckpoint(const std::string& path);
+  std::string checkpointPath() const;
+  std::string lastGoodCheckpoint() const { return lastCheckpoint_; }
+
+  long long step() const { return step_; }
+  double time() const { return static_cast<double>(step_) * settings_.demStep; }
+  const CaseSettings& settings() const { return settings_; }
+  dem::System& dem() { return *dem_; }
+  std::uint64_t caseFingerprint() const { return fingerprint_; }
+  /// Every key of the case with its value (defaults filled in) and unit.
+  const std::string& resolvedCase() const { return resolvedCaseText_; }
+  RunState state() const;
+  std::string timingTable(double wallSeconds) const;
+
+ private:
+  void writeOutput();
+  void sampleMonitors(bool force);
+  void flushMonitors() const;
+  void checkHealth() const;
+  void checkTimeStep(Params& root);
+
+  CaseSettings settings_;
+  RunOptions options_;
+  Domain domain_;
+  std::unique_ptr<dem::System> dem_;
+  std::vector<MonitorSlot> monitors_;
+  std::uint64_t fingerprint_ = 0;
+  std::string caseFile_;
+  std::string resolvedCaseText_;
+
+  long long step_ = 0;
+  long long outputCount_ = 0;
+  double nextOutputTime_ = 0.0;
+  std::vector<double> nextMonitorTime_;
+  std::string lastCheckpoint_;
+  io::PvdCollection particleSeries_;
+  PhaseTimers appTimers_;
+};
+
+/// Case fingerprint: hash of every resolved key except those allowed to change on restart.
+std::uint64_t fingerprintOf(const std::vector<ResolvedKey>& keys);
+/// The resolved case as YAML-like text "path: value  # unit (default)".
+std::string formatResolvedCase(const std::vector<ResolvedKey>& keys);
+
+/// Set by SIGINT/SIGTERM; the loop writes a checkpoint and stops.
+void installSignalHandlers();
+int pendingSignal();
+
+}  // namespace gf::app

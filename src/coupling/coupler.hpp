@@ -1,0 +1,145 @@
+#pragma once
+// Unresolved CFD-DEM coupling: void fraction, fluid forces on particles, exchange fields for the
+// fluid. Formulas and model choices: docs/coupling.md. One coupling (fluid) step, in the order of
+// Simulation::advance (fluid -> forces -> DEM substeps -> exchange fields -> fluid):
+//
+//   fluid.step(fields)                                             // uses eps, force density, K, u_p
+//   coupler.computeParticleForces(fluidView, fields, particles);   // externalForce/Torque, held over
+//   N x dem.step(dt_dem)                                           //   the DEM substeps
+//   coupler.computeVoidFraction(particles, fields);                // new stencils and eps (eps_old kept)
+//   coupler.fillFluidSources(particles, fields);                   // force density, K, u_p for the fluid
+//   coupler.momentumBalanceError();                                // Newton 3: ~1e-16 relative
+//
+// (computeVoidFraction must also run once before the first computeParticleForces.) The forces of
+// computeParticleForces are distributed with the stencils of the latest computeVoidFraction; the
+// DEM may move and reorder particles in between (matched by id). The fields of the FluidView given
+// to computeParticleForces must stay alive, unchanged, until fillFluidSources returns (the
+// implicit part and the balance use the fluid velocity).
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/coupling_fields.hpp"
+#include "core/grid.hpp"
+#include "core/params.hpp"
+#include "core/serialize.hpp"
+#include "coupling/coarse_graining.hpp"
+#include "coupling/coupling_interval.hpp"
+#include "coupling/drag/drag_law.hpp"
+#include "coupling/grid_topology.hpp"
+#include "coupling/interpolation.hpp"
+#include "coupling/stencil.hpp"
+#include "coupling/void_fraction/void_fraction_scheme.hpp"
+#include "dem/particles.hpp"
+
+namespace gf::coupling {
+
+/// What the fluid solver lends the coupling (cell-centred fields on the coupling grid).
+struct FluidView {
+  const Field* velocity[3] = {nullptr, nullptr, nullptr};          // interstitial fluid velocity, m/s
+  const Field* pressureGradient[3] = {nullptr, nullptr, nullptr};  // grad p, Pa/m
+  const Field* viscousStressDivergence[3] = {nullptr, nullptr, nullptr};  // div tau, N/m^3 (optional)
+  double density = 1000.0;   // kg/m^3
+  double viscosity = 1e-3;   // dynamic, Pa s
+  double timeStep = 0.0;     // coupling interval (fluid step), s; needed by the virtual mass force
+};
+
+enum class ExchangeModel { A, B };
+enum class ExchangeScheme { Explicit, SemiImplicit };
+
+struct ForceSwitches {
+  bool drag = true;
+  bool pressureGradient = true;
+  bool viscousStress = true;
+  bool buoyancy = false;  // only where the fluid pressure excludes the hydrostatic part
+  bool virtualMass = false;
+  bool saffmanMeiLift = false;
+  bool magnusLift = false;
+  bool fluidTorque = false;
+  double virtualMassCoefficient = 0.5;
+};
+
+struct CouplerSettings {
+  ExchangeModel model = ExchangeModel::A;
+  std::string dragLaw = "di_felice";
+  std::string voidFraction = "divided";
+  InterpolationMode interpolation = InterpolationMode::Trilinear;
+  ExchangeScheme exchange = ExchangeScheme::SemiImplicit;
+  ForceSwitches forces;
+  double smoothingLength = 0.0;  // m; 0 = off
+  bool smoothExchangeFields = false;
+  double minVoidFraction = 0.1;
+  double minRelaxationToIntervalRatio = 10.0;
+  CoarseGraining coarseGraining;
+};
+
+class Coupler {
+ public:
+  /// Reads section `coupling` of the case. `periodic` as the Domain's, `gravity` for buoyancy.
+  Coupler(Params& root, const CartesianGrid& grid, const std::array<bool, 3>& periodic, const Vec3& gravity);
+
+  void computeVoidFraction(const dem::ParticleSet& particles, CouplingFields& fields);
+  void computeParticleForces(const FluidView& fluid, const CouplingFields& fields, dem::ParticleSet& particles);
+  void fillFluidSources(const dem::ParticleSet& particles, CouplingFields& fields);
+  /// Same, when the particle set is unchanged (same order) since computeParticleForces.
+  void fillFluidSources(CouplingFields& fields);
+
+  /// sum over particles of the forces exchanged with the fluid + sum over cells of the fluid
+  /// source times cell volume (N); zero up to round-off (Newton's third law), see docs.
+  Vec3 momentumBalanceError() const { return balanceError_; }
+  /// Sum of |exchanged force| over particles (N), the scale of momentumBalanceError.
+  double exchangedForceScale() const { return exchangedForceScale_; }
+  double particleVolume() const { return particleVolume_; }     // sum V_p, m^3
+  double depositedVolume() const { return depositedVolume_; }   // sum (1 - eps) V_c before clipping, m^3
+  double clippedVolume() const { return clippedVolume_; }       // volume lost to min_void_fraction, m^3
+  const std::vector<double>& dragCoefficients() const { return beta_; }  // beta_p per particle, kg/s
+
+  /// Coupling-interval criterion for the smallest particle at slip velocity `slip` (seed 000 eq. 5.30).
+  CouplingIntervalCheck checkCouplingInterval(double demTimeStep, int demStepsPerFluidStep,
+                                              const dem::ParticleSet& particles, const FluidView& fluid,
+                                              double slip) const;
+
+  const CouplerSettings& settings() const { return settings_; }
+  const DragLaw& dragLaw() const { return *drag_; }
+  const GridTopology& topology() const { return topology_; }
+  const ParticleStencils& stencils() const { return stencils_; }
+
+  /// State across coupling steps: the previous slip per particle (virtual mass).
+  void save(BinaryWriter& out) const;
+  void load(BinaryReader& in);
+
+ private:
+  template <InterpolationMode Mode>
+  void sampleFluid(const FluidView& fluid, const CouplingFields& fields, const dem::ParticleSet& particles);
+  void computeForcesFromSamples(const FluidView& fluid, dem::ParticleSet& particles);
+  Vec3 previousSlip(std::size_t p, std::int64_t id, const Vec3& current) const;
+  void realignToParticles(const dem::ParticleSet& particles);
+  void depositExchange(CouplingFields& fields, bool implicit);
+  void smoothExchange(CouplingFields& fields, bool implicit) const;
+  void updateMomentumBalance(const CouplingFields& fields, bool implicit);
+  void fillGhosts(Field& f) const;
+
+  CouplerSettings settings_;
+  GridTopology topology_;
+  Vec3 gravity_;
+  std::unique_ptr<DragLaw> drag_;
+  std::unique_ptr<VoidFractionScheme> scheme_;
+  ParticleStencils stencils_;
+  FluidView lastFluid_;
+  Field scratch_[7];      // deposit targets / derived fluid fields
+  Field vorticity_[3];
+  Field divTau_[3];
+  // per particle, from computeParticleForces
+  std::vector<Vec3> fluidVelocityAtParticle_, slip_, gradPAtParticle_, divTauAtParticle_, vorticityAtParticle_;
+  std::vector<double> voidFractionAtParticle_, reynolds_, correction_, beta_;
+  std::vector<Vec3> dragForce_, otherExchangedForce_;
+  std::vector<std::int64_t> previousId_;
+  std::vector<Vec3> previousSlip_;
+  double particleVolume_ = 0.0, depositedVolume_ = 0.0, clippedVolume_ = 0.0;
+  Vec3 balanceError_;
+  bool stencilsReady_ = false, forcesReady_ = false;
+  double exchangedForceScale_ = 0.0;
+};
+
+}  // namespace gf::coupling

@@ -1,0 +1,119 @@
+#pragma once
+// Fluid quantities at particle positions, and the cell-centred differential operators the forces
+// need (vorticity, viscous stress divergence).
+//
+// Interpolation modes (key coupling.interpolation):
+//   cell       value of the cell containing the particle centre
+//   trilinear  trilinear between the 8 surrounding cell centres; in wall directions the position
+//              is clamped to the first/last cell centre (constant extrapolation over the half cell
+//              next to the wall), in periodic directions indices wrap
+//   stencil    sum_c w_pc value_c with the particle's void-fraction stencil (the same weights that
+//              distribute the forces: interpolation and distribution are then adjoint)
+#include <cmath>
+
+#include "core/grid.hpp"
+#include "coupling/grid_topology.hpp"
+#include "coupling/stencil.hpp"
+
+namespace gf::coupling {
+
+enum class InterpolationMode { Cell, Trilinear, Stencil };
+
+/// Trilinear weights: 8 flat indices and weights (sum 1) for point x.
+struct TrilinearWeights {
+  std::size_t cell[8];
+  double weight[8];
+};
+
+inline TrilinearWeights trilinearWeights(const GridTopology& t, const Vec3& x) {
+  int lo[3], hi[3];
+  double frac[3];
+  for (int a = 0; a < 3; ++a) {
+    const int n = t.grid.cells[a];
+    double s = (x[a] - t.grid.origin[a]) / t.grid.spacing[a] - 0.5;
+    if (!t.periodic[a]) s = std::min(std::max(s, 0.0), static_cast<double>(n - 1));
+    const double f = std::floor(s);
+    frac[a] = s - f;
+    lo[a] = t.mapIndex(static_cast<int>(f), a);
+    hi[a] = t.mapIndex(static_cast<int>(f) + 1, a);
+  }
+  TrilinearWeights w{};
+  int m = 0;
+  for (int dk = 0; dk < 2; ++dk)
+    for (int dj = 0; dj < 2; ++dj)
+      for (int di = 0; di < 2; ++di) {
+        w.cell[m] = t.flat(di ? hi[0] : lo[0], dj ? hi[1] : lo[1], dk ? hi[2] : lo[2]);
+        w.weight[m] = (di ? frac[0] : 1.0 - frac[0]) * (dj ? frac[1] : 1.0 - frac[1]) * (dk ? frac[2] : 1.0 - frac[2]);
+        ++m;
+      }
+  return w;
+}
+
+/// Interpolation weights of one point: computed once per particle, applied to every field.
+/// Not copyable (cell/weight may point into the object itself).
+struct SampleWeights {
+  int count = 0;
+  const std::size_t* cell = nullptr;
+  const double* weight = nullptr;
+  std::size_t localCell[8];
+  double localWeight[8];
+  SampleWeights() = default;
+  SampleWeights(const SampleWeights&) = delete;
+  SampleWeights& operator=(const SampleWeights&) = delete;
+};
+
+/// Weights of particle p at x for the interpolation mode (resolved at compile time).
+template <InterpolationMode Mode>
+inline void sampleWeights(const GridTopology& t, const ParticleStencils& s, std::size_t p, const Vec3& x,
+                          SampleWeights& w) {
+  if constexpr (Mode == InterpolationMode::Cell) {
+    const auto c = t.cellOf(x);
+    w.count = 1;
+    w.localCell[0] = t.flat(c[0], c[1], c[2]);
+    w.localWeight[0] = 1.0;
+    w.cell = w.localCell;
+    w.weight = w.localWeight;
+  } else if constexpr (Mode == InterpolationMode::Trilinear) {
+    const TrilinearWeights tw = trilinearWeights(t, x);
+    w.count = 8;
+    for (int m = 0; m < 8; ++m) {
+      w.localCell[m] = tw.cell[m];
+      w.localWeight[m] = tw.weight[m];
+    }
+    w.cell = w.localCell;
+    w.weight = w.localWeight;
+  } else {
+    w.count = s.count[p];
+    w.cell = s.cell.data() + p * s.capacity;
+    w.weight = s.weight.data() + p * s.capacity;
+  }
+}
+
+/// out[i] = sum_m w_m fields[i][cell_m].
+template <int N>
+inline void sampleFields(const SampleWeights& w, const Field* const (&fields)[N], double (&out)[N]) {
+  for (int i = 0; i < N; ++i) out[i] = 0.0;
+  for (int m = 0; m < w.count; ++m)
+    for (int i = 0; i < N; ++i) out[i] += w.weight[m] * fields[i]->data()[w.cell[m]];
+}
+
+/// One-off sample of several fields at particle p (tests, diagnostics).
+template <InterpolationMode Mode, int N>
+inline void sampleAt(const GridTopology& t, const ParticleStencils& s, std::size_t p, const Vec3& x,
+                     const Field* const (&fields)[N], double (&out)[N]) {
+  SampleWeights w;
+  sampleWeights<Mode>(t, s, p, x, w);
+  sampleFields<N>(w, fields, out);
+}
+
+/// Vorticity omega = curl u of a cell-centred velocity (central differences; one-sided next to
+/// walls, wrapped across periodic boundaries). Writes interior cells of `curl`.
+void computeVorticity(const GridTopology& t, const Field* const (&velocity)[3], Field (&curl)[3]);
+
+/// Divergence of the viscous stress of an incompressible Newtonian fluid, mu laplace(u), by the
+/// 7-point Laplacian (zero normal gradient at walls, wrapped at periodic boundaries). Supply the
+/// fluid solver's own div(tau) through FluidView where it has one.
+void computeViscousStressDivergence(const GridTopology& t, const Field* const (&velocity)[3], double viscosity,
+                                    Field (&divTau)[3]);
+
+}  // namespace gf::coupling

@@ -1,0 +1,93 @@
+#include "coupling/smoothing.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include "coupling/loops.hpp"
+
+namespace gf::coupling {
+namespace {
+
+/// Interior cells as a compact vector (x fastest).
+struct Compact {
+  const GridTopology& t;
+  std::size_t n() const { return t.grid.interiorCellCount(); }
+  std::size_t at(int i, int j, int k) const {
+    return (static_cast<std::size_t>(k) * t.grid.cells[1] + j) * t.grid.cells[0] + i;
+  }
+};
+
+/// y = (I - l^2 L) x with the 7-point Laplacian, zero flux at walls, wrap at periodic boundaries.
+void apply(const GridTopology& t, double l2, const std::vector<double>& x, std::vector<double>& y) {
+  const Compact c{t};
+  const auto& n = t.grid.cells;
+  forEachIndex(static_cast<std::int64_t>(n[2]) * n[1], n[0], [&](std::int64_t kj) {
+    const int k = static_cast<int>(kj / n[1]);
+    const int j = static_cast<int>(kj % n[1]);
+    for (int i = 0; i < n[0]; ++i) {
+      const int idx[3] = {i, j, k};
+      const double xc = x[c.at(i, j, k)];
+      double lap = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        if (n[a] == 1) continue;
+        const double h2 = t.grid.spacing[a] * t.grid.spacing[a];
+        for (int s : {-1, 1}) {
+          int nb[3] = {i, j, k};
+          const int m = idx[a] + s;
+          if (!t.periodic[a] && (m < 0 || m >= n[a])) continue;  // wall: no flux
+          nb[a] = t.mapIndex(m, a);
+          lap += (x[c.at(nb[0], nb[1], nb[2])] - xc) / h2;
+        }
+      }
+      y[c.at(i, j, k)] = xc - l2 * lap;
+    }
+  });
+}
+
+double dotProduct(const std::vector<double>& a, const std::vector<double>& b) {
+  return sumOverIndices(static_cast<std::int64_t>(a.size()), [&](std::int64_t i) { return a[i] * b[i]; });
+}
+
+}  // namespace
+
+SmoothingReport smoothField(const GridTopology& t, double l, Field& field) {
+  SmoothingReport report;
+  if (l <= 0.0) return report;
+  const Compact c{t};
+  const std::size_t n = c.n();
+  const auto& cells = t.grid.cells;
+  std::vector<double> b(n), x(n), r(n), p(n), q(n);
+  for (int k = 0; k < cells[2]; ++k)
+    for (int j = 0; j < cells[1]; ++j)
+      for (int i = 0; i < cells[0]; ++i) b[c.at(i, j, k)] = field(i, j, k);
+  // Conjugate gradients on the SPD matrix A = I - l^2 L (its eigenvalues lie in [1, 1 + 4 l^2 sum 1/h^2]).
+  x = b;
+  apply(t, l * l, x, q);
+  for (std::size_t i = 0; i < n; ++i) r[i] = b[i] - q[i];
+  p = r;
+  const double bNorm = std::sqrt(dotProduct(b, b));
+  double rr = dotProduct(r, r);
+  const double tolerance = 1e-13 * (bNorm > 0.0 ? bNorm : 1.0);
+  int it = 0;
+  while (std::sqrt(rr) > tolerance && it < 10000) {
+    apply(t, l * l, p, q);
+    const double alpha = rr / dotProduct(p, q);
+    for (std::size_t i = 0; i < n; ++i) {
+      x[i] += alpha * p[i];
+      r[i] -= alpha * q[i];
+    }
+    const double rrNew = dotProduct(r, r);
+    const double beta = rrNew / rr;
+    rr = rrNew;
+    for (std::size_t i = 0; i < n; ++i) p[i] = r[i] + beta * p[i];
+    ++it;
+  }
+  for (int k = 0; k < cells[2]; ++k)
+    for (int j = 0; j < cells[1]; ++j)
+      for (int i = 0; i < cells[0]; ++i) field(i, j, k) = x[c.at(i, j, k)];
+  report.iterations = it;
+  report.relativeResidual = std::sqrt(rr) / (bNorm > 0.0 ? bNorm : 1.0);
+  return report;
+}
+
+}  // namespace gf::coupling

@@ -1,0 +1,30 @@
+#pragma once
+// Void-fraction schemes: how a particle's volume is spread over fluid cells. A scheme builds the
+// per-particle stencils (weights summing to 1) once per coupling step (one virtual call); the
+// same stencils then give eps and distribute the particle forces (Coupler).
+//
+// Schemes (one file each, selected by name in the case file, key coupling.void_fraction):
+//   pcm           particle centre cell (seed 001 eq. 6)
+//   divided       29 satellite points of equal weight (CFDEM 'divided'; seed 001 "SPM")
+//   kernel        smooth kernel over cells within a radius larger than a cell (QCM-like)
+//   big_particle  volume sampled on a sub-lattice inside the sphere, spread over all overlapped cells
+#include "coupling/grid_topology.hpp"
+#include "coupling/stencil.hpp"
+#include "core/params.hpp"
+#include "core/registry.hpp"
+#include "dem/particles.hpp"
+
+namespace gf::coupling {
+
+class VoidFractionScheme {
+ public:
+  virtual ~VoidFractionScheme() = default;
+  /// Fills `stencils` for every particle of `particles`.
+  virtual void buildStencils(const dem::ParticleSet& particles, const GridTopology& topology,
+                             ParticleStencils& stencils) const = 0;
+};
+
+/// Largest radius in the set (0 for an empty set).
+double maxRadius(const dem::ParticleSet& particles);
+
+}  // namespace gf::coupling

@@ -1,0 +1,55 @@
+#pragma once
+// ParaView-readable VTK XML output: particles as PolyData-free UnstructuredGrid (.vtu, one vertex
+// per particle), cell fields as ImageData (.vti), and .pvd collections with physical times.
+// Arrays are written in binary (base64, UInt64 headers), so files are compact yet plain XML.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "dem/particles.hpp"
+
+namespace gf::io {
+
+/// A named array for VTK output: n tuples of `components` doubles, or int64 values.
+struct VtkArray {
+  std::string name;
+  int components = 1;
+  std::vector<double> real;        // used when !isInteger
+  std::vector<std::int64_t> integer;  // used when isInteger
+  bool isInteger = false;
+};
+
+/// Base64 of raw bytes (RFC 4648) and its inverse.
+std::string base64Encode(const void* data, std::size_t size);
+std::vector<unsigned char> base64Decode(const std::string& text);
+
+/// Particle file: points = centres; point data id, type, radius, velocity, angular_velocity, force.
+std::string particlesVtu(const dem::ParticleSet& particles);
+/// Cell-centred fields on a grid (interior cells only).
+std::string cellFieldsVti(const CartesianGrid& grid, const std::vector<VtkArray>& cellArrays);
+
+/// All DataArrays of a VTK XML file written by this module, decoded (for tests and post-processing).
+std::map<std::string, VtkArray> readVtkArrays(const std::string& xml);
+
+/// A .pvd collection (series of files with physical times), rewritten atomically on each add.
+class PvdCollection {
+ public:
+  PvdCollection() = default;
+  explicit PvdCollection(std::string path) : path_(std::move(path)) {}
+  void add(double time, const std::string& relativeFile);
+  /// Drops entries after `time` (used when a run restarts from a checkpoint).
+  void truncateAfter(double time);
+  /// Re-reads an existing collection (restart).
+  void load();
+  const std::string& path() const { return path_; }
+  std::size_t size() const { return entries_.size(); }
+
+ private:
+  void write() const;
+  std::string path_;
+  std::vector<std::pair<double, std::string>> entries_;
+};
+
+}  // namespace gf::io

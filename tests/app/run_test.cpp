@@ -1,0 +1,138 @@
+// End-to-end behaviour of `grainflow run`: restart equals continuous, divergence handling,
+// interruption with checkpoint, output layout.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "io/csv_series.hpp"
+#include "io/vtk.hpp"
+#include "run_helper.hpp"
+
+using gf::testing::grainflow;
+using gf::testing::readAll;
+using gf::testing::TempDir;
+
+namespace {
+const std::string kCase = R"(case: {name: restart}
+domain: {min: [0, 0, 0], max: [0.02, 0.02, 0.06]}
+time: {end: 0.04, dem_step: 2.0e-5}
+materials: [{name: glass, density: 2500.0, youngs_modulus: 5.0e6, restitution: 0.5}]
+walls: [{type: plane, point: [0, 0, 0], normal: [0, 0, 1]}]
+insertion:
+  - {type: lattice, material: glass, origin: [0.004, 0.004, 0.004], spacing: 0.0043, nx: 4, ny: 4, nz: 4,
+     diameter: 0.004, velocity: [0.01, -0.02, -0.1]}
+output: {interval: 0.005}
+monitors: [{type: particle_count, interval: 0.002}]
+)";
+}
+
+TEST(Run, RestartEqualsContinuousBitForBit) {
+  TempDir dir;
+  const std::string file = dir.write("case.yaml", kCase);
+  ASSERT_EQ(grainflow("run " + file + " --quiet --threads 2 --output " + dir.file("full")).exitCode, 0);
+  ASSERT_EQ(grainflow("run " + file + " --quiet --threads 2 --end-time 0.017 --output " + dir.file("split")).exitCode, 0);
+  const auto resumed = grainflow("run " + file + " --quiet --threads 2 --output " + dir.file("split") + " --restart " +
+                                 dir.file("split/checkpoint.bin"));
+  ASSERT_EQ(resumed.exitCode, 0) << resumed.output;
+  // Final states (positions, velocities, forces, counters) are identical byte for byte.
+  const std::string full = readAll(dir.file("full/checkpoint.bin"));
+  EXPECT_GT(full.size(), 1000u);
+  EXPECT_EQ(full, readAll(dir.file("split/checkpoint.bin")));
+  EXPECT_EQ(readAll(dir.file("full/particles_000008.vtu")), readAll(dir.file("split/particles_000008.vtu")));
+  // Series and monitors continue without gaps or duplicates.
+  EXPECT_EQ(readAll(dir.file("full/particles.pvd")), readAll(dir.file("split/particles.pvd")));
+  EXPECT_EQ(readAll(dir.file("full/particle_count.csv")), readAll(dir.file("split/particle_count.csv")));
+}
+
+TEST(Run, SameInputSameThreadsSameResult) {
+  TempDir dir;
+  const std::string file = dir.write("case.yaml", kCase);
+  ASSERT_EQ(grainflow("run " + file + " --quiet --threads 2 --end-time 0.01 --output " + dir.file("a")).exitCode, 0);
+  ASSERT_EQ(grainflow("run " + file + " --quiet --threads 2 --end-time 0.01 --output " + dir.file("b")).exitCode, 0);
+  EXPECT_EQ(readAll(dir.file("a/checkpoint.bin")), readAll(dir.file("b/checkpoint.bin")));
+}
+
+TEST(Run, WritesParaViewSeriesWithPhysicalTimes) {
+  TempDir dir;
+  const std::string file = dir.write("case.yaml", kCase);
+  const auto r = grainflow("run " + file + " --threads 1 --end-time 0.01 --output " + dir.file("o"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("paraview"), std::string::npos);
+  EXPECT_NE(r.output.find("neighbour search"), std::string::npos) << "timing table missing";
+  const std::string pvd = readAll(dir.file("o/particles.pvd"));
+  EXPECT_NE(pvd.find("timestep=\"0.01\""), std::string::npos) << pvd;
+  EXPECT_NE(pvd.find("particles_000002.vtu"), std::string::npos) << pvd;
+  const auto arrays = gf::io::readVtkArrays(readAll(dir.file("o/particles_000002.vtu")));
+  ASSERT_TRUE(arrays.count("radius"));
+  EXPECT_EQ(arrays.at("radius").real.size(), 64u);
+  const auto csv = gf::io::readCsv(dir.file("o/particle_count.csv"));
+  EXPECT_EQ(csv.header.at(0), "time [s]");
+  EXPECT_EQ(csv.header.at(1), "particles [-]");
+  EXPECT_EQ(csv.rows.size(), 6u);  // t = 0, 0.002, ..., 0.01
+  EXPECT_DOUBLE_EQ(csv.rows.back().at(1), 64.0);
+}
+
+TEST(Run, ParticleLeavingDomainStopsWithStepIdAndPlaceAndKeepsCheckpoint) {
+  TempDir dir;
+  std::string text = kCase;
+  text.replace(text.find("walls: [{type: plane, point: [0, 0, 0], normal: [0, 0, 1]}]"),
+               std::string("walls: [{type: plane, point: [0, 0, 0], normal: [0, 0, 1]}]").size(), "walls: []");
+  text += "checkpoint: {interval_steps: 100}\n";
+  const std::string file = dir.write("case.yaml", text);
+  const auto r = grainflow("run " + file + " --quiet --output " + dir.file("o"));
+  EXPECT_EQ(r.exitCode, 3) << r.output;
+  EXPECT_NE(r.output.find("run diverged at step"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("particle left the domain"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("particle id"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("at position ("), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("last good checkpoint kept"), std::string::npos) << r.output;
+  // The kept checkpoint is valid: restarting from it reaches the same divergence, not a checkpoint error.
+  const auto again = grainflow("run " + file + " --quiet --output " + dir.file("o") + " --restart " + dir.file("o/checkpoint.bin"));
+  EXPECT_EQ(again.exitCode, 3) << again.output;
+}
+
+TEST(Run, InterruptWritesCheckpointThatContinues) {
+  TempDir dir;
+  std::string text = kCase;
+  text.replace(text.find("end: 0.04"), 9, "end: 100.0");
+  text.replace(text.find("velocity: [0.01, -0.02, -0.1]"), 29, "velocity: [0.0, 0.0, -0.1]");
+  const std::string file = dir.write("case.yaml", text);
+  const std::string cmd = "bash -c '" + std::string(GRAINFLOW_BINARY) + " run " + file + " --quiet --output " +
+                          dir.file("o") + " & pid=$!; sleep 1.5; kill -INT $pid; wait $pid; echo exit=$?'";
+  const auto r = gf::testing::runShell(cmd);
+  EXPECT_NE(r.output.find("exit=130"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("checkpoint written"), std::string::npos) << r.output;
+  ASSERT_TRUE(std::filesystem::exists(dir.file("o/checkpoint.bin")));
+  const auto resumed = grainflow("run " + file + " --quiet --end-time 0.0 --output " + dir.file("o") + " --restart " +
+                                 dir.file("o/checkpoint.bin"));
+  EXPECT_EQ(resumed.exitCode, 0) << resumed.output;
+}
+
+TEST(Run, EveryExampleCaseChecks) {
+  for (const auto& entry : std::filesystem::directory_iterator(gf::testing::sourcePath("cases"))) {
+    if (entry.path().extension() != ".yaml") continue;
+    const auto r = grainflow("check " + entry.path().string());
+    EXPECT_EQ(r.exitCode, 0) << entry.path() << "\n" << r.output;
+  }
+}
+
+TEST(Run, DemoCaseFallingSpheresRunsAndSettles) {
+  TempDir dir;
+  const auto r = grainflow("run " + gf::testing::sourcePath("cases/falling_spheres.yaml") +
+                           " --quiet --end-time 0.12 --output " + dir.file("o"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const auto arrays = gf::io::readVtkArrays(readAll(dir.file("o/particles_000012.vtu")));
+  const auto& points = arrays.at("Points").real;
+  ASSERT_EQ(points.size(), 3u * 500u);
+  double lowest = 1.0;
+  for (std::size_t i = 2; i < points.size(); i += 3) lowest = std::min(lowest, points[i]);
+  // The bottom layer rests on the floor: centre about one radius (2 mm) above it, overlap small.
+  EXPECT_NEAR(lowest, 0.002, 0.0002);
+}
+
+TEST(Docs, CaseFileReferenceMatchesSchema) {
+  const auto r = grainflow("docs");
+  ASSERT_EQ(r.exitCode, 0);
+  EXPECT_EQ(r.output, readAll(gf::testing::sourcePath("docs/case-file.md")))
+      << "docs/case-file.md is out of date: regenerate it with `build/grainflow docs > docs/case-file.md`";
+}

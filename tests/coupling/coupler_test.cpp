@@ -1,0 +1,86 @@
+// Coupler construction from the case file: defaults, documentation mode, errors with names.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "core/monitor.hpp"
+#include "coupling_test_helpers.hpp"
+
+using namespace gf;
+using namespace gf::coupling;
+using namespace gf::coupling::testing;
+
+TEST(Coupler, DefaultsWhenSectionIsAbsent) {
+  const CartesianGrid g = makeGrid({3, 3, 3}, {0.01, 0.01, 0.01});
+  Params p = Params::loadString("other: 1\n", "c.yaml");
+  p.real({"other"}, 0.0);
+  Coupler c(p, g, {false, false, false}, {0, 0, -9.81});
+  p.checkUnknownKeys();
+  EXPECT_EQ(c.settings().model, ExchangeModel::A);
+  EXPECT_EQ(c.settings().dragLaw, "di_felice");
+  EXPECT_EQ(c.settings().voidFraction, "divided");
+  EXPECT_EQ(c.settings().exchange, ExchangeScheme::SemiImplicit);
+  EXPECT_EQ(c.settings().interpolation, InterpolationMode::Trilinear);
+  EXPECT_TRUE(c.settings().forces.drag && c.settings().forces.pressureGradient && c.settings().forces.viscousStress);
+  EXPECT_FALSE(c.settings().forces.virtualMass || c.settings().forces.saffmanMeiLift || c.settings().forces.buoyancy);
+}
+
+TEST(Coupler, DocumentationModeListsEveryKey) {
+  const CartesianGrid g = makeGrid({3, 3, 3}, {0.01, 0.01, 0.01});
+  Params p = Params::documentation();
+  Coupler c(p, g, {false, false, false}, {0, 0, -9.81});
+  std::vector<std::string> paths;
+  for (const auto& k : p.documentedKeys()) paths.push_back(k.path);
+  for (const char* key : {"coupling.model", "coupling.drag_law", "coupling.void_fraction", "coupling.interpolation",
+                          "coupling.exchange", "coupling.smoothing_length", "coupling.min_void_fraction",
+                          "coupling.coarse_grain_factor",
+                          "coupling.kernel_radius_cells", "coupling.samples_per_diameter",
+                          "coupling.forces.virtual_mass", "coupling.forces.fluid_torque"})
+    EXPECT_NE(std::find(paths.begin(), paths.end(), key), paths.end()) << key;
+}
+
+TEST(Coupler, UnknownDragLawNamesTheValidOnes) {
+  const CartesianGrid g = makeGrid({3, 3, 3}, {0.01, 0.01, 0.01});
+  try {
+    makeCoupler("  drag_law: di_feliche\n", g);
+    FAIL() << "no error";
+  } catch (const CaseError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("test.yaml:2"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("di_felice"), std::string::npos) << msg;
+  }
+  EXPECT_THROW(makeCoupler("  forces:\n    virtual_mas: true\n", g), CaseError);
+  EXPECT_THROW(makeCoupler("  coarse_grain_factor: 0.5\n", g), CaseError);
+}
+
+TEST(Coupler, CallOrderIsChecked) {
+  const CartesianGrid g = makeGrid({3, 3, 3}, {0.01, 0.01, 0.01});
+  auto c = makeCoupler("", g);
+  dem::ParticleSet s = randomParticles(5, 0.001, 0.001, {0, 0, 0}, {0.03, 0.03, 0.03});
+  FluidFields fluid(g);
+  CouplingFields f(g);
+  EXPECT_THROW(c->computeParticleForces(fluid.view(1000.0, 1e-3), f, s), std::logic_error);
+  EXPECT_THROW(c->fillFluidSources(f), std::logic_error);
+}
+
+TEST(Coupler, BalanceMonitorReportsRoundOffErrorAndVolumes) {
+  const CartesianGrid g = makeGrid({6, 6, 6}, {0.01, 0.01, 0.01});
+  auto c = makeCoupler("  min_void_fraction: 0\n", g);
+  dem::ParticleSet s = randomParticles(100, 0.001, 0.002, {0, 0, 0}, {0.06, 0.06, 0.06});
+  FluidFields fluid(g);
+  fluid.setVelocity(g, [](const Vec3& x) { return Vec3{x.y, 0.1, 0.0}; });
+  CouplingFields f(g);
+  c->computeVoidFraction(s, f);
+  c->computeParticleForces(fluid.view(1000.0, 1e-3), f, s);
+  c->fillFluidSources(f);
+  Params p = Params::loadString("x: 0\n", "m.yaml");
+  auto monitor = Registry<Monitor>::instance().createByName("coupling_balance", p);
+  RunState state;
+  state.coupling = c.get();
+  const auto values = monitor->sample(state);
+  ASSERT_EQ(values.size(), monitor->columns().size());
+  EXPECT_LT(values[3], 1e-13);
+  EXPECT_GT(values[4], 0.0);
+  EXPECT_NEAR(values[5] / values[4], 1.0, 1e-13);
+  EXPECT_EQ(values[6], 0.0);
+}

@@ -1,0 +1,212 @@
+// Interpolation to particles, distribution back with the void-fraction stencils, Newton's third
+// law to round-off, model A / B exchange sets, explicit vs semi-implicit fluid sources.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "coupling/interpolation.hpp"
+#include "coupling_test_helpers.hpp"
+
+using namespace gf;
+using namespace gf::coupling;
+using namespace gf::coupling::testing;
+
+namespace {
+const CartesianGrid kGrid = makeGrid({8, 7, 9}, {0.01, 0.011, 0.009});
+Vec3 swirl(const Vec3& x) {
+  return {0.3 + 2.0 * std::sin(40.0 * x.y) * x.z, -0.1 + 5.0 * x.x * x.x, 0.2 * std::cos(30.0 * x.x + 20.0 * x.y)};
+}
+Vec3 pressureGradient(const Vec3& x) { return {100.0 * x.y, -9810.0 + 50.0 * x.x, 30.0 * std::sin(50.0 * x.z)}; }
+}  // namespace
+
+TEST(Interpolation, TrilinearIsExactForLinearFieldsAndCellModeGivesCellValue) {
+  const GridTopology topo{kGrid, {false, false, false}};
+  Field f(kGrid);
+  auto linear = [](const Vec3& x) { return 1.0 + 2.0 * x.x - 3.0 * x.y + 0.5 * x.z; };
+  for (int k = 0; k < 9; ++k)
+    for (int j = 0; j < 7; ++j)
+      for (int i = 0; i < 8; ++i) f(i, j, k) = linear(kGrid.cellCentre(i, j, k));
+  const Field* const fields[1] = {&f};
+  double out[1];
+  ParticleStencils none;
+  for (Vec3 x : {Vec3{0.031, 0.042, 0.05}, Vec3{0.0051, 0.0071, 0.0046}, Vec3{0.0749, 0.0715, 0.0764}}) {
+    sampleAt<InterpolationMode::Trilinear, 1>(topo, none, 0, x, fields, out);
+    EXPECT_NEAR(out[0], linear(x), 1e-13);
+    sampleAt<InterpolationMode::Cell, 1>(topo, none, 0, x, fields, out);
+    const auto c = kGrid.cellOf(x);
+    EXPECT_EQ(out[0], f(c[0], c[1], c[2]));
+  }
+  // within half a cell of a wall the value is held constant (clamped to the first cell centre)
+  sampleAt<InterpolationMode::Trilinear, 1>(topo, none, 0, Vec3{0.001, 0.03, 0.03}, fields, out);
+  EXPECT_NEAR(out[0], linear(Vec3{0.005, 0.03, 0.03}), 1e-13);
+}
+
+TEST(Interpolation, PeriodicTrilinearWrapsAcrossTheBoundary) {
+  const GridTopology topo{kGrid, {true, false, false}};
+  Field f(kGrid);
+  for (int k = 0; k < 9; ++k)
+    for (int j = 0; j < 7; ++j)
+      for (int i = 0; i < 8; ++i) f(i, j, k) = (i == 0 ? 1.0 : (i == 7 ? 3.0 : 0.0));
+  const Field* const fields[1] = {&f};
+  double out[1];
+  ParticleStencils none;
+  // x = 0 lies halfway between the centres of cells 7 (image) and 0
+  sampleAt<InterpolationMode::Trilinear, 1>(topo, none, 0, Vec3{0.0, 0.03, 0.03}, fields, out);
+  EXPECT_NEAR(out[0], 2.0, 1e-13);
+}
+
+TEST(Exchange, NewtonsThirdLawHoldsToRoundOffForEveryConfiguration) {
+  const dem::ParticleSet base = randomParticles(600, 0.0008, 0.002, {-0.001, -0.001, -0.001}, {0.081, 0.078, 0.082});
+  FluidFields fluid(kGrid);
+  fluid.setVelocity(kGrid, swirl);
+  fluid.setPressureGradient(kGrid, pressureGradient);
+  int checked = 0;
+  for (const char* scheme : {"pcm", "divided", "kernel", "big_particle"})
+    for (const char* interp : {"cell", "trilinear", "stencil"})
+      for (const char* model : {"A", "B"})
+        for (const char* exchange : {"explicit", "implicit"}) {
+          const std::string yaml = std::string("  void_fraction: ") + scheme + "\n  interpolation: " + interp +
+                                   "\n  model: " + model + "\n  exchange: " + exchange +
+                                   "\n  drag_law: beetstra\n  forces:\n    virtual_mass: true\n"
+                                   "    saffman_mei_lift: true\n    magnus_lift: true\n    fluid_torque: true\n";
+          auto c = makeCoupler(yaml, kGrid, {true, false, false});
+          dem::ParticleSet particles = base;
+          CouplingFields fields(kGrid);
+          c->computeVoidFraction(particles, fields);
+          c->computeParticleForces(fluid.view(1.2, 1.8e-5), fields, particles);
+          c->fillFluidSources(fields);
+          const Vec3 e = c->momentumBalanceError();
+          ASSERT_GT(c->exchangedForceScale(), 0.0);
+          EXPECT_LT(norm(e), 1e-13 * c->exchangedForceScale()) << scheme << " " << interp << " " << model << " " << exchange;
+          ++checked;
+        }
+  EXPECT_EQ(checked, 48);
+}
+
+TEST(Exchange, SemiImplicitFieldsReproduceTheExplicitSourceAtTheCouplingInstant) {
+  // u_p per cell is the K-weighted particle velocity corrected by the interpolation defect
+  // (u_c - u_f@p), so K (u_c - u_p) equals the explicit drag source in every cell at the coupling
+  // instant, for any interpolation; the implicit part only changes how the fluid's new velocity enters.
+  const dem::ParticleSet base = randomParticles(300, 0.001, 0.002, {0, 0, 0}, {0.08, 0.077, 0.081});
+  FluidFields fluid(kGrid);
+  fluid.setVelocity(kGrid, swirl);
+  for (const char* interp : {"stencil", "trilinear"}) {
+    const std::string common = std::string("  void_fraction: divided\n  interpolation: ") + interp +
+                               "\n  forces:\n    pressure_gradient: false\n    viscous_stress: false\n";
+    auto ce = makeCoupler(common + "  exchange: explicit\n", kGrid);
+    auto ci = makeCoupler(common + "  exchange: implicit\n", kGrid);
+    dem::ParticleSet pe = base, pi = base;
+    CouplingFields fe(kGrid), fi(kGrid);
+    ce->computeVoidFraction(pe, fe);
+    ci->computeVoidFraction(pi, fi);
+    ce->computeParticleForces(fluid.view(1000.0, 1e-3), fe, pe);
+    ci->computeParticleForces(fluid.view(1000.0, 1e-3), fi, pi);
+    ce->fillFluidSources(fe);
+    ci->fillFluidSources(fi);
+    for (std::size_t p = 0; p < base.size(); ++p) EXPECT_EQ(pe.externalForce[p], pi.externalForce[p]);
+    for (int k = 0; k < 9; ++k)
+      for (int j = 0; j < 7; ++j)
+        for (int i = 0; i < 8; ++i) {
+          EXPECT_EQ(fi.forceDensity[0](i, j, k), 0.0);  // drag only, all in K
+          EXPECT_GE(fi.dragCoefficient(i, j, k), 0.0);
+          const double implicitSource =
+              -fi.dragCoefficient(i, j, k) * (fluid.u[0](i, j, k) - fi.particleVelocity[0](i, j, k));
+          EXPECT_NEAR(implicitSource, fe.forceDensity[0](i, j, k), 1e-9 * (1.0 + std::abs(fe.forceDensity[0](i, j, k))))
+              << interp;
+        }
+  }
+}
+
+TEST(Exchange, ModelAKeepsPressureForceOnParticlesOnlyModelBGivesItBack) {
+  // Uniform pressure gradient, fluid and particles at rest: only -V_p grad p acts.
+  const dem::ParticleSet base = randomParticles(200, 0.001, 0.002, {0, 0, 0}, {0.08, 0.077, 0.081});
+  FluidFields fluid(kGrid);
+  fluid.setPressureGradient(kGrid, [](const Vec3&) { return Vec3{0.0, 0.0, -9810.0}; });
+  double totalVolume = 0.0;
+  for (double r : base.radius) totalVolume += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  for (const char* model : {"A", "B"}) {
+    dem::ParticleSet particles = base;
+    for (auto& v : particles.velocity) v = {};
+    auto c = makeCoupler(std::string("  model: ") + model + "\n  exchange: explicit\n", kGrid);
+    CouplingFields fields(kGrid);
+    c->computeVoidFraction(particles, fields);
+    c->computeParticleForces(fluid.view(1000.0, 1e-3), fields, particles);
+    c->fillFluidSources(fields);
+    Vec3 onParticles{}, onFluid{};
+    for (const Vec3& f : particles.externalForce) onParticles += f;
+    for (int k = 0; k < 9; ++k)
+      for (int j = 0; j < 7; ++j)
+        for (int i = 0; i < 8; ++i) onFluid.z += fields.forceDensity[2](i, j, k) * kGrid.cellVolume();
+    EXPECT_NEAR(onParticles.z, 9810.0 * totalVolume, 1e-12 * 9810.0 * totalVolume);  // -V grad p, upwards
+    if (std::string(model) == "A")
+      EXPECT_EQ(onFluid.z, 0.0);  // the fluid has -eps grad p in its own equation
+    else
+      EXPECT_NEAR(onFluid.z, -9810.0 * totalVolume, 1e-12 * 9810.0 * totalVolume);
+  }
+}
+
+TEST(Exchange, DistributionIsTheAdjointOfStencilInterpolation) {
+  // sum_p F_p . u(x_p) = sum_c f_c . u_c V_c when u(x_p) uses the same weights as the deposit:
+  // the power exchanged is the same seen from the particles and from the fluid.
+  const dem::ParticleSet base = randomParticles(300, 0.001, 0.002, {0, 0, 0}, {0.08, 0.077, 0.081});
+  FluidFields fluid(kGrid);
+  fluid.setVelocity(kGrid, swirl);
+  auto c = makeCoupler("  void_fraction: kernel\n  interpolation: stencil\n  exchange: explicit\n"
+                       "  forces:\n    pressure_gradient: false\n    viscous_stress: false\n",
+                       kGrid);
+  dem::ParticleSet particles = base;
+  CouplingFields fields(kGrid);
+  c->computeVoidFraction(particles, fields);
+  c->computeParticleForces(fluid.view(1000.0, 1e-3), fields, particles);
+  c->fillFluidSources(fields);
+  double particlePower = 0.0, fluidPower = 0.0;
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    const ParticleStencils& s = c->stencils();
+    Vec3 u{};
+    for (int e = 0; e < s.count[p]; ++e)
+      for (int a = 0; a < 3; ++a) u[a] += s.weight[p * s.capacity + e] * fluid.u[a].data()[s.cell[p * s.capacity + e]];
+    particlePower += dot(particles.externalForce[p], u);
+  }
+  for (int k = 0; k < 9; ++k)
+    for (int j = 0; j < 7; ++j)
+      for (int i = 0; i < 8; ++i)
+        for (int a = 0; a < 3; ++a) fluidPower += fields.forceDensity[a](i, j, k) * fluid.u[a](i, j, k) * kGrid.cellVolume();
+  EXPECT_NEAR(particlePower, -fluidPower, 1e-12 * std::abs(particlePower));
+}
+
+TEST(Exchange, SourcesAfterDemSubstepsFollowParticlesByIdAndKeepTheBalance) {
+  // Time-loop order: forces -> DEM substeps (particles move and are reordered) -> void fraction ->
+  // fluid sources. The forces computed before the substeps are deposited at the new positions.
+  const dem::ParticleSet base = randomParticles(400, 0.001, 0.002, {0, 0, 0}, {0.08, 0.077, 0.081});
+  FluidFields fluid(kGrid);
+  fluid.setVelocity(kGrid, swirl);
+  for (const char* exchange : {"explicit", "implicit"}) {
+    auto c = makeCoupler(std::string("  model: B\n  exchange: ") + exchange + "\n", kGrid, {true, false, false});
+    dem::ParticleSet particles = base;
+    CouplingFields fields(kGrid);
+    c->computeVoidFraction(particles, fields);
+    c->computeParticleForces(fluid.view(1.2, 1.8e-5), fields, particles);
+    Vec3 total{};
+    for (std::size_t p = 0; p < particles.size(); ++p) total += particles.externalForce[p];
+    // "DEM": reverse the order and move every particle by 3 mm in x (wrapping periodically)
+    dem::ParticleSet moved;
+    for (std::size_t q = particles.size(); q-- > 0;) {
+      Vec3 x = particles.position[q] + Vec3{0.003, 0.0, 0.0};
+      if (x.x >= 0.08) x.x -= 0.08;
+      moved.add(particles.id[q], 0, particles.radius[q], 2500.0, x, particles.velocity[q]);
+    }
+    c->computeVoidFraction(moved, fields);
+    c->fillFluidSources(moved, fields);
+    EXPECT_LT(norm(c->momentumBalanceError()), 1e-13 * c->exchangedForceScale()) << exchange;
+    // the fluid receives minus the total force computed before the substeps
+    Vec3 onFluid{};
+    for (int k = 0; k < 9; ++k)
+      for (int j = 0; j < 7; ++j)
+        for (int i = 0; i < 8; ++i)
+          for (int a = 0; a < 3; ++a)
+            onFluid[a] += (fields.forceDensity[a](i, j, k) -
+                           fields.dragCoefficient(i, j, k) * (fluid.u[a](i, j, k) - fields.particleVelocity[a](i, j, k))) *
+                          kGrid.cellVolume();
+    EXPECT_LT(norm(onFluid + total), 1e-12 * c->exchangedForceScale()) << exchange;
+  }
+}
