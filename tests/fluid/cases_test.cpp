@@ -38,3 +38,26 @@ TEST(Cases, FluidCasesRunShortened) {
 
 }  // namespace
 }  // namespace gf::fluid
+
+namespace gf::fluid {
+namespace {
+
+TEST(Cases, DocumentationModeListsFluidKeys) {
+  Params doc = Params::documentation();
+  Domain d;
+  d.min = Vec3{0, 0, 0};
+  d.max = Vec3{1, 1, 1};
+  Solver s(doc, d, Vec3{});
+  bool density = false, boundaries = false, blocked = false;
+  for (const auto& k : doc.documentedKeys()) {
+    density = density || k.path == "fluid.density";
+    boundaries = boundaries || k.path.find("fluid.boundaries.x_min.type") != std::string::npos;
+    blocked = blocked || k.path.find("blocked") != std::string::npos;
+  }
+  EXPECT_TRUE(density);
+  EXPECT_TRUE(boundaries);
+  EXPECT_TRUE(blocked);
+}
+
+}  // namespace
+}  // namespace gf::fluid
