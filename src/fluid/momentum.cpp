@@ -12,9 +12,13 @@ namespace {
 
 /// N = div(rho eps u u_c) at the faces of component c (finite volume around the face; mass
 /// fluxes interpolated to the control-volume faces, transported value central or van Leer).
+///
+/// Where eps varies (UNIFORM = false) the explicit rest of the viscous stress of seed 000
+/// eq. 5.6, div(eps mu [(grad u)^T - 2/3 (div u) I]), is subtracted from N as well (it vanishes
+/// for constant eps and a divergence-free field, so the eps = 1 path skips it).
 template <bool TVD, bool UNIFORM>
 void convectionKernel(const Field u[3], const Field& eps, const std::vector<std::uint8_t>& mask, Field& out, int c,
-                      double rho, int dims) {
+                      double rho, double mu, int dims) {
   const Field& uc = u[c];
   const CartesianGrid& g = uc.grid();
   const auto& pts = uc.points();
@@ -62,6 +66,36 @@ void convectionKernel(const Field u[3], const Field& eps, const std::vector<std:
         const double qp = faceValue<TVD>(Fp, U[f - s], U[f], U[f + s], U[f + 2 * s]);
         const double qm = faceValue<TVD>(Fm, U[f - 2 * s], U[f - s], U[f], U[f + s]);
         N += (Fp * qp - Fm * qm) / g.spacing[d];
+      }
+      if constexpr (!UNIFORM) {
+        // Explicit stress rest for component c:
+        //   d/dx_c(eps du_c/dx_c) - 2/3 d/dx_c(eps div u) + sum_{d != c} d/dx_d(eps du_d/dx_c)
+        auto divergence = [&](int ci, int cj, int ck) {
+          double dv = 0.0;
+          for (int a = 0; a < dims; ++a) {
+            const std::size_t fa = u[a].index(ci, cj, ck);
+            dv += (u[a].data()[fa + u[a].stride(a)] - u[a].data()[fa]) / g.spacing[a];
+          }
+          return dv;
+        };
+        int m[3] = {i, j, k};
+        m[c] -= 1;
+        const double hc = g.spacing[c];
+        const double divP = divergence(i, j, k), divM = divergence(m[0], m[1], m[2]);
+        const double dP = (U[f + su[c]] - U[f]) / hc, dM = (U[f] - U[f - su[c]]) / hc;
+        double T = (E[cc] * (dP - 2.0 / 3.0 * divP) - E[cm] * (dM - 2.0 / 3.0 * divM)) / hc;
+        for (int d = 0; d < dims; ++d) {
+          if (d == c) continue;
+          const double* V = u[d].data().data();
+          const std::ptrdiff_t vc = u[d].stride(c), vd = u[d].stride(d);
+          const std::size_t idc = d0[d] + i, idm = idc - vc;
+          const double gp = (V[idc + vd] - V[idm + vd]) / hc;
+          const double gm = (V[idc] - V[idm]) / hc;
+          const double ep = 0.25 * (E[cc] + E[cm] + E[cc + se[d]] + E[cm + se[d]]);
+          const double em = 0.25 * (E[cc] + E[cm] + E[cc - se[d]] + E[cm - se[d]]);
+          T += (ep * gp - em * gm) / g.spacing[d];
+        }
+        N -= mu * T;
       }
       O[f] = N;
     }
@@ -143,13 +177,13 @@ void Solver::computeConvection(Field out[3]) const {
   for (int c = 0; c < dims; ++c) {
     const bool tvd = scheme_ == ConvectionScheme::VanLeer;
     if (tvd && uniformCoupling_)
-      convectionKernel<true, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, dims);
+      convectionKernel<true, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims);
     else if (tvd)
-      convectionKernel<true, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, dims);
+      convectionKernel<true, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims);
     else if (uniformCoupling_)
-      convectionKernel<false, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, dims);
+      convectionKernel<false, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims);
     else
-      convectionKernel<false, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, dims);
+      convectionKernel<false, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims);
   }
 }
 
