@@ -298,11 +298,11 @@ int Solver::solveHelmholtz(int c, double dt, double g0) {
   const double bnorm = std::sqrt(parallelSumElements(n, [&](std::int64_t q) { return mask[q] ? B[q] * B[q] : 0.0; }));
   const double tol = momentumTolerance_ * (bnorm > 0.0 ? bnorm : 1.0);
   double rnorm = std::sqrt(dot(r, r));
+  double rhoNew = rnorm * rnorm;  // rhat = r initially
   int it = 0;
   double rho = 1.0, alpha = 1.0, omega = 1.0;
   while (rnorm > tol && it < momentumMaxIterations_) {
     ++it;
-    const double rhoNew = dot(rhat, r);
     if (rhoNew == 0.0) break;
     const double beta = (rhoNew / rho) * (alpha / omega);
     rho = rhoNew;
@@ -313,23 +313,31 @@ int Solver::solveHelmholtz(int c, double dt, double g0) {
     fillVelocityGhosts(y, c, bc_, GhostMode::Homogeneous);
     applyHelmholtz(c, y, krylov_[3], dt, g0);
     alpha = rho / dot(rhat, v);
-    parallelForElements(n, [&](std::int64_t q) { s[q] = r[q] - alpha * v[q]; });
-    const double snorm = std::sqrt(dot(s, s));
-    if (snorm <= tol) {
+    const double ss = parallelSum2Elements(n, [&](std::int64_t q, double& a, double&) {
+                        s[q] = r[q] - alpha * v[q];
+                        Z[q] = s[q] * invDiag[q];
+                        a += s[q] * s[q];
+                      }).first;
+    if (std::sqrt(ss) <= tol) {
       parallelForElements(n, [&](std::int64_t q) { X[q] += alpha * Y[q]; });
-      rnorm = snorm;
+      rnorm = std::sqrt(ss);
       break;
     }
-    parallelForElements(n, [&](std::int64_t q) { Z[q] = s[q] * invDiag[q]; });
     fillVelocityGhosts(z, c, bc_, GhostMode::Homogeneous);
     applyHelmholtz(c, z, krylov_[5], dt, g0);
-    const double tt = dot(t, t);
-    omega = tt > 0.0 ? dot(t, s) / tt : 0.0;
-    parallelForElements(n, [&](std::int64_t q) {
+    const auto [tt, ts] = parallelSum2Elements(n, [&](std::int64_t q, double& a, double& b) {
+      a += t[q] * t[q];
+      b += t[q] * s[q];
+    });
+    omega = tt > 0.0 ? ts / tt : 0.0;
+    const auto [rr, rhr] = parallelSum2Elements(n, [&](std::int64_t q, double& a, double& b) {
       X[q] += alpha * Y[q] + omega * Z[q];
       r[q] = s[q] - omega * t[q];
+      a += r[q] * r[q];
+      b += rhat[q] * r[q];
     });
-    rnorm = std::sqrt(dot(r, r));
+    rnorm = std::sqrt(rr);
+    rhoNew = rhr;
     if (omega == 0.0) break;
   }
   fillVelocityGhosts(x, c, bc_, GhostMode::Full);

@@ -176,7 +176,7 @@ void Solver::project(double dt, double g0) {
     const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
     for (int i = 0; i < nx; ++i) {
       const std::size_t id = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * line;
-      poissonX_[id] = 0.0;
+      if (blocked(i, j, k)) poissonX_[id] = 0.0;  // otherwise: previous increment as initial guess
       if (blocked(i, j, k)) {
         poissonRhs_[id] = 0.0;
         continue;

@@ -377,6 +377,7 @@ void Solver::save(BinaryWriter& out) const {
   out.putVector(coupling_.voidFraction.data());
   out.putVector(coupling_.voidFractionOld.data());
   out.putVector(coupling_.dragCoefficient.data());
+  out.putVector(poissonX_);  // last pressure increment: initial guess of the next solve
 }
 
 void Solver::load(BinaryReader& in) {
@@ -406,6 +407,9 @@ void Solver::load(BinaryReader& in) {
   readInto(coupling_.voidFraction);
   readInto(coupling_.voidFractionOld);
   readInto(coupling_.dragCoefficient);
+  auto guess = in.getVector<double>();
+  if (guess.size() != poissonX_.size()) throw CheckpointError("fluid checkpoint: pressure increment size mismatch");
+  poissonX_ = std::move(guess);
   poissonKey_ = -1.0;
 }
 
