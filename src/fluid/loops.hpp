@@ -10,7 +10,7 @@
 
 namespace gf::fluid {
 
-inline constexpr std::int64_t kSerialBelow = 1024;           // grid lines
+inline constexpr std::int64_t kSerialBelow = 2048;           // grid lines
 inline constexpr std::int64_t kSerialElementsBelow = 65536;  // single values
 
 template <class Body>
