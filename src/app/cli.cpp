@@ -11,6 +11,8 @@
 #include <iostream>
 
 #include "app/docs.hpp"
+#include "app/plot.hpp"
+#include "app/validate.hpp"
 #include "app/simulation.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -127,6 +129,21 @@ int runCommandLine(int argc, char** argv) {
 
   auto* docs = app.add_subcommand("docs", "print the case-file reference (Markdown), generated from the schema");
 
+  // validate / plot (issue 10; see src/app/validate.hpp and docs/validation-format.md)
+  ValidateOptions validateOptions;
+  auto* validate = app.add_subcommand("validate", "run the validation items (validation/*/validation.yaml), compare with the references");
+  validate->add_option("names", validateOptions.names, "items to run (default: all)");
+  validate->add_flag("--quick", validateOptions.quick, "reduced durations/resolutions (as in ctest); does not rewrite docs");
+  validate->add_option("--dir", validateOptions.validationDirectory, "validation directory (default: ./validation or the source tree's)");
+  validate->add_option("--output", validateOptions.outputDirectory, "where runs, results.csv and plots go (default: output/validation)");
+  validate->add_option("--docs", validateOptions.docsDirectory, "where full mode writes validation.md and img/ (default: <dir>/../docs)");
+  validate->add_flag("--no-docs", [&](std::int64_t) { validateOptions.writeDocs = false; }, "do not rewrite docs/validation.md");
+  validate->add_flag("--no-plots", [&](std::int64_t) { validateOptions.plots = false; }, "numbers only");
+  validate->add_option("--threads", validateOptions.threads, "OpenMP threads")->check(CLI::NonNegativeNumber);
+  std::string plotDirectory;
+  auto* plot = app.add_subcommand("plot", "one PNG per monitor CSV of a run, written next to the CSVs");
+  plot->add_option("output", plotDirectory, "output directory of a run")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -152,6 +169,8 @@ int runCommandLine(int argc, char** argv) {
     }
     if (*check) return commandCheck(caseFile, checkThreads);
     if (*bench) return commandBench(benchName, benchThreads);
+    if (*validate) return runValidate(validateOptions);
+    if (*plot) return plotRunOutput(plotDirectory);
     if (*docs) {
       std::fputs(caseFileReference().c_str(), stdout);
       return kExitOk;

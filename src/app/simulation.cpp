@@ -106,6 +106,14 @@ Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptio
   domain_ = Domain::read(root);
   dem_ = std::make_unique<dem::System>(root, domain_, settings_.gravity);
   checkTimeStep(root);
+  if (root.documenting() || root.has("fluid")) fluid_ = std::make_unique<fluid::Solver>(root, domain_, settings_.gravity);
+  if (root.documenting() || root.has("coupling")) {
+    if (!fluid_) root.fail("coupling", "a 'coupling' section without a 'fluid' section", "a 'fluid' section as well");
+    const auto model =
+        fluid_->model() == fluid::MomentumModel::A ? coupling::ExchangeModel::A : coupling::ExchangeModel::B;
+    coupler_ = std::make_unique<coupling::Coupler>(root, fluid_->grid(), domain_.periodic, settings_.gravity, model);
+    if (!root.documenting()) initialiseCoupling();
+  }
 
   for (Params& m : root.list({"monitors", "-", "quantities written as CSV time series (one file per monitor)"})) {
     std::string type = "monitor";
@@ -124,6 +132,33 @@ Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptio
   fingerprint_ = fingerprintOf(root.resolved());
   resolvedCaseText_ = formatResolvedCase(root.resolved());
   particleSeries_ = io::PvdCollection((fs::path(settings_.outputDirectory) / "particles.pvd").string());
+  fluidSeries_ = io::PvdCollection((fs::path(settings_.outputDirectory) / "fluid.pvd").string());
+}
+
+void Simulation::initialiseCoupling() {
+  // The first fluid step needs the void fraction of the initial packing, with no d(eps)/dt.
+  CouplingFields& fields = fluid_->couplingFields();
+  coupler_->computeVoidFraction(dem_->particles(), fields);
+  fields.voidFractionOld = fields.voidFraction;
+  if (dem_->particles().size() == 0) return;
+  // Coupling-interval criterion (seed 000 eq. 5.30, tables 5.4/5.5), in the Stokes limit (slip 0).
+  const coupling::CouplingIntervalCheck check = coupler_->checkCouplingInterval(
+      settings_.demStep, settings_.demStepsPerCouplingStep, dem_->particles(), fluidView(), 0.0);
+  if (!check.warning.empty()) spdlog::warn("{}", check.warning);
+}
+
+coupling::FluidView Simulation::fluidView() {
+  fluid_->cellVelocity(fluidVelocity_);
+  fluid_->pressureGradient(fluidPressureGradient_);
+  coupling::FluidView view;
+  for (int c = 0; c < 3; ++c) {
+    view.velocity[c] = &fluidVelocity_[c];
+    view.pressureGradient[c] = &fluidPressureGradient_[c];
+  }
+  view.density = fluid_->density();
+  view.viscosity = fluid_->viscosity();
+  view.timeStep = fluidStep();
+  return view;
 }
 
 Simulation::~Simulation() = default;
@@ -190,6 +225,8 @@ void Simulation::writeCheckpoint(const std::string& path) const {
   out.put(nextOutputTime_);
   out.putVector(nextMonitorTime_);
   dem_->save(out);
+  if (fluid_) fluid_->save(out);
+  if (coupler_) coupler_->save(out);
   for (const MonitorSlot& m : monitors_) m.monitor->save(out);
   io::writeCheckpoint(path, fingerprint_, out);
 }
@@ -205,10 +242,22 @@ void Simulation::restoreCheckpoint(const std::string& path) {
     throw CheckpointError(fmt::format("checkpoint '{}' has {} monitors, the case has {}", path, nextMonitorTime_.size(),
                                       monitors_.size()));
   dem_->load(in);
+  if (fluid_) fluid_->load(in);
+  if (coupler_) {
+    coupler_->load(in);
+    // Rebuild the coupling stencils of the restored particles without touching the restored fields.
+    CouplingFields& fields = fluid_->couplingFields();
+    const Field eps = fields.voidFraction, epsOld = fields.voidFractionOld;
+    coupler_->computeVoidFraction(dem_->particles(), fields);
+    fields.voidFraction = eps;
+    fields.voidFractionOld = epsOld;
+  }
   for (MonitorSlot& m : monitors_) m.monitor->load(in);
   if (!in.atEnd()) throw CheckpointError(fmt::format("checkpoint '{}' has trailing data (written by another case?)", path));
   particleSeries_.load();
   particleSeries_.truncateAfter(time());
+  fluidSeries_.load();
+  fluidSeries_.truncateAfter(time());
   for (MonitorSlot& m : monitors_) m.series.resumeFrom(time());
   lastCheckpoint_ = path;
 }
@@ -217,15 +266,29 @@ void Simulation::restoreCheckpoint(const std::string& path) {
 
 void Simulation::advance() {
   // One coupling step. Data flows one way (seed 000, unresolved CFD-DEM algorithm; seed 001,
-  // coupling scheme): fluid -> coupling (void fraction, forces on particles) -> DEM substeps
-  // -> coupling (exchange fields) -> fluid.
+  // coupling scheme): fluid -> coupling (forces on particles) -> DEM substeps -> coupling (void
+  // fraction and exchange fields) -> fluid. The fluid step uses the exchange fields of the
+  // previous coupling step; the particles feel the fluid it just produced.
+  if (fluid_) fluid_->step(fluidStep());
+  if (coupler_) {
+    ScopedPhase timer(appTimers_, Phase::Coupling);
+    coupler_->computeParticleForces(fluidView(), fluid_->couplingFields(), dem_->particles());
+  }
   for (int s = 0; s < settings_.demStepsPerCouplingStep; ++s) dem_->step(settings_.demStep);
+  if (coupler_) {
+    ScopedPhase timer(appTimers_, Phase::Coupling);
+    coupler_->computeVoidFraction(dem_->particles(), fluid_->couplingFields());
+    coupler_->fillFluidSources(dem_->particles(), fluid_->couplingFields());
+  }
   step_ += settings_.demStepsPerCouplingStep;
 }
 
-RunState Simulation::state() const { return RunState{time(), step_, dem_.get(), nullptr, nullptr}; }
+RunState Simulation::state() const { return RunState{time(), step_, dem_.get(), fluid_.get(), coupler_.get()}; }
 
-void Simulation::checkHealth() const { dem_->checkHealth(step_, time()); }
+void Simulation::checkHealth() const {
+  dem_->checkHealth(step_, time());
+  if (fluid_) fluid_->checkHealth(step_, time());
+}
 
 void Simulation::writeOutput() {
   ScopedPhase timer(appTimers_, Phase::Output);
@@ -234,6 +297,13 @@ void Simulation::writeOutput() {
     const std::string file = fmt::format("particles_{:06d}.vtu", outputCount_);
     io::writeFileAtomically((dir / file).string(), io::particlesVtu(dem_->particles()));
     particleSeries_.add(time(), file);
+  }
+  if (fluid_ && settings_.writeFluid) {
+    const std::string file = fmt::format("fluid_{:06d}.vti", outputCount_);
+    std::vector<io::VtkArray> arrays;
+    for (const fluid::NamedCellField& f : fluid_->cellFields()) arrays.push_back(io::cellArray(f.name, f.field));
+    io::writeFileAtomically((dir / file).string(), io::cellFieldsVti(fluid_->grid(), arrays));
+    fluidSeries_.add(time(), file);
   }
   ++outputCount_;
   nextOutputTime_ = static_cast<double>(outputCount_) * settings_.outputInterval;
@@ -304,6 +374,13 @@ RunStatus Simulation::run() {
 std::string Simulation::timingTable(double wallSeconds) const {
   PhaseTimers total = dem_->timers();
   total.add(Phase::Output, appTimers_.seconds(Phase::Output));
+  total.add(Phase::Coupling, appTimers_.seconds(Phase::Coupling));
+  if (fluid_) {
+    // The fluid's own total includes its pressure solves; show them apart.
+    const PhaseTimers& f = fluid_->timers();
+    total.add(Phase::Fluid, f.seconds(Phase::Fluid) - f.seconds(Phase::PressureSolve));
+    total.add(Phase::PressureSolve, f.seconds(Phase::PressureSolve));
+  }
   std::string out = fmt::format("{:<18} {:>10} {:>7}\n", "phase", "wall [s]", "share");
   double accounted = 0.0;
   for (int p = 0; p < static_cast<int>(Phase::Count); ++p) {

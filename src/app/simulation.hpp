@@ -10,7 +10,9 @@
 #include "core/monitor.hpp"
 #include "core/params.hpp"
 #include "core/timers.hpp"
+#include "coupling/coupler.hpp"
 #include "dem/system.hpp"
+#include "fluid/solver.hpp"
 #include "io/csv_series.hpp"
 #include "io/vtk.hpp"
 
@@ -79,6 +81,10 @@ class Simulation {
   double time() const { return static_cast<double>(step_) * settings_.demStep; }
   const CaseSettings& settings() const { return settings_; }
   dem::System& dem() { return *dem_; }
+  fluid::Solver* fluid() { return fluid_.get(); }
+  coupling::Coupler* coupler() { return coupler_.get(); }
+  /// Fluid (coupling) time step: DEM step x DEM substeps per coupling step, s.
+  double fluidStep() const { return settings_.demStep * settings_.demStepsPerCouplingStep; }
   std::uint64_t caseFingerprint() const { return fingerprint_; }
   /// Every key of the case with its value (defaults filled in) and unit.
   const std::string& resolvedCase() const { return resolvedCaseText_; }
@@ -91,11 +97,16 @@ class Simulation {
   void flushMonitors() const;
   void checkHealth() const;
   void checkTimeStep(Params& root);
+  coupling::FluidView fluidView();
+  void initialiseCoupling();
 
   CaseSettings settings_;
   RunOptions options_;
   Domain domain_;
   std::unique_ptr<dem::System> dem_;
+  std::unique_ptr<fluid::Solver> fluid_;        // absent for DEM-only cases
+  std::unique_ptr<coupling::Coupler> coupler_;  // absent without a 'coupling' section
+  Field fluidVelocity_[3], fluidPressureGradient_[3];  // cell-centred, lent to the coupling
   std::vector<MonitorSlot> monitors_;
   std::uint64_t fingerprint_ = 0;
   std::string caseFile_;
@@ -107,6 +118,7 @@ class Simulation {
   std::vector<double> nextMonitorTime_;
   std::string lastCheckpoint_;
   io::PvdCollection particleSeries_;
+  io::PvdCollection fluidSeries_;
   PhaseTimers appTimers_;
 };
 

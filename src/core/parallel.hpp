@@ -9,9 +9,12 @@
 
 namespace gf {
 
+/// Loops shorter than this run on the calling thread: a parallel region costs microseconds.
+inline constexpr std::int64_t kMinParallelLoop = 512;
+
 template <class Body>
 inline void parallelFor(std::int64_t n, Body&& body) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelLoop)
   for (std::int64_t i = 0; i < n; ++i) body(i);
 }
 
@@ -20,7 +23,7 @@ inline void parallelFor(std::int64_t n, Body&& body) {
 template <class Body>
 inline double parallelSum(std::int64_t n, Body&& body) {
   double partial[256] = {};
-#pragma omp parallel
+#pragma omp parallel if (n >= kMinParallelLoop)
   {
     const int t = omp_get_thread_num();
     double local = 0.0;

@@ -106,6 +106,7 @@ struct Params::Shared {
   std::vector<ResolvedKey> resolved;
   std::vector<KeyDoc> docs;
   std::set<std::string> documentedPaths;
+  std::string documentationContext;  // e.g. "type = particle_probe" while a model documents its keys
 };
 
 Params::Params(std::shared_ptr<Shared> shared, std::shared_ptr<Section> section)
@@ -162,6 +163,7 @@ Params Params::documentation() {
 // ---------------------------------------------------------------- helpers
 
 bool Params::documenting() const { return shared_->documenting; }
+void Params::setDocumentationContext(const std::string& context) { shared_->documentationContext = context; }
 const std::string& Params::fileName() const { return shared_->file; }
 
 std::string Params::path(std::string_view key) const {
@@ -206,8 +208,9 @@ void Params::document(const Key& k, std::string type, std::string defaultValue, 
   // In documentation mode, list items are all documented under "name[]".
   const std::string p = path(k.name);
   if (!shared_->documentedPaths.insert(p).second) return;
-  shared_->docs.push_back({p, std::move(type), std::move(defaultValue), std::string(k.unit), std::move(allowed),
-                           std::string(k.help)});
+  std::string help(k.help);
+  if (!shared_->documentationContext.empty()) help = "(" + shared_->documentationContext + ") " + help;
+  shared_->docs.push_back({p, std::move(type), std::move(defaultValue), std::string(k.unit), std::move(allowed), help});
 }
 
 void Params::record(const Key& k, std::string value, bool fromDefault) const {
@@ -497,7 +500,7 @@ Params Params::childParams(const Key& k, const YAML::Node& node, const std::stri
 Params Params::section(const Key& k) {
   markQueried(k.name);
   if (documenting()) {
-    document(k, "section", "", "map");
+    document(k, "section", "optional", "map");
     return childParams(k, YAML::Node(), path(k.name), false);
   }
   const YAML::Node* n = find(k.name);
@@ -507,6 +510,7 @@ Params Params::section(const Key& k) {
 }
 
 Params Params::requiredSection(const Key& k) {
+  if (documenting()) document(k, "section", "required", "map");
   if (!documenting() && !has(k.name)) {
     markQueried(k.name);
     fail(k.name, "nothing", "a map of keys (this section is required)");

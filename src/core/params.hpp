@@ -109,6 +109,9 @@ class Params {
 
   bool has(std::string_view key) const;
   bool documenting() const;
+  /// In documentation mode, a note put before the help of every key declared until reset
+  /// (the registry uses it to say which model a key belongs to).
+  void setDocumentationContext(const std::string& context);
   /// Full dotted path of a key in this section, e.g. "walls[1].normal".
   std::string path(std::string_view key) const;
   /// Where a key (or, when absent, this section) stands in the file.

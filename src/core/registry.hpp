@@ -57,7 +57,9 @@ class Registry {
       section.choice(modelKey, valid, defaultName);
       std::unique_ptr<Interface> first;
       for (const auto& [name, entry] : entries_) {
+        section.setDocumentationContext(std::string(modelKey.name) + " = " + name);
         auto made = entry.make(section);
+        section.setDocumentationContext("");
         if (!first) first = std::move(made);
       }
       return first;

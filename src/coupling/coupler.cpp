@@ -16,11 +16,6 @@ namespace {
 
 CouplerSettings readSettings(Params& s) {
   CouplerSettings c;
-  c.model = s.choice({"model", "-", "A: fluid sees -eps grad p, gets drag (+lift, virtual mass) back; "
-                                    "B: fluid sees -grad p, gets all fluid-particle forces back (seed 000, 001)"},
-                     {"A", "B"}, "A") == "A"
-                ? ExchangeModel::A
-                : ExchangeModel::B;
   const std::string interp = s.choice({"interpolation", "-", "fluid quantities at particles: cell value, trilinear, "
                                                              "or the void-fraction stencil"},
                                       {"cell", "trilinear", "stencil"}, "trilinear");
@@ -65,10 +60,12 @@ CouplerSettings readSettings(Params& s) {
 
 }  // namespace
 
-Coupler::Coupler(Params& root, const CartesianGrid& grid, const std::array<bool, 3>& periodic, const Vec3& gravity)
+Coupler::Coupler(Params& root, const CartesianGrid& grid, const std::array<bool, 3>& periodic, const Vec3& gravity,
+                 ExchangeModel model)
     : topology_{grid, periodic}, gravity_(gravity) {
   Params s = root.section({"coupling", "", "unresolved CFD-DEM coupling (docs/coupling.md)"});
   settings_ = readSettings(s);
+  settings_.model = model;
   drag_ = Registry<DragLaw>::instance().create(s, {"drag_law", "-", "drag law (docs/coupling.md)"}, "di_felice");
   scheme_ = Registry<VoidFractionScheme>::instance().create(
       s, {"void_fraction", "-", "void-fraction scheme, also the kernel that distributes forces"}, "divided");
@@ -174,11 +171,20 @@ void Coupler::sampleFluid(const FluidView& fluid, const CouplingFields& fields, 
   });
 }
 
-Vec3 Coupler::previousSlip(std::size_t p, std::int64_t id, const Vec3& current) const {
-  if (p < previousId_.size() && previousId_[p] == id) return previousSlip_[p];
-  for (std::size_t q = 0; q < previousId_.size(); ++q)  // reordered set: rare, linear search is fine
-    if (previousId_[q] == id) return previousSlip_[q];
-  return current;  // new particle: no virtual mass force in its first step
+void Coupler::alignPreviousSlip(const dem::ParticleSet& particles) {
+  // slip of each current particle at the previous coupling step (matched by id); a particle
+  // without history gets its current slip, i.e. no virtual-mass force in its first step
+  if (particles.id == previousId_) return;
+  std::unordered_map<std::int64_t, std::size_t> oldIndex;
+  oldIndex.reserve(previousId_.size());
+  for (std::size_t q = 0; q < previousId_.size(); ++q) oldIndex.emplace(previousId_[q], q);
+  std::vector<Vec3> aligned(particles.size());
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    const auto it = oldIndex.find(particles.id[p]);
+    aligned[p] = it == oldIndex.end() ? slip_[p] : previousSlip_[it->second];
+  }
+  previousSlip_ = std::move(aligned);
+  previousId_ = particles.id;
 }
 
 void Coupler::computeForcesFromSamples(const FluidView& fluid, dem::ParticleSet& particles) {
@@ -189,6 +195,7 @@ void Coupler::computeForcesFromSamples(const FluidView& fluid, dem::ParticleSet&
   const double rho = fluid.density, mu = fluid.viscosity;
   if (w.virtualMass && !(fluid.timeStep > 0.0))
     throw std::invalid_argument("coupling: virtual mass force needs FluidView::timeStep > 0");
+  if (w.virtualMass) alignPreviousSlip(particles);
   forEachIndex(static_cast<std::int64_t>(particles.size()), 64, [&](std::int64_t ip) {
     const auto p = static_cast<std::size_t>(ip);
     const double d = 2.0 * particles.radius[p];
@@ -209,7 +216,7 @@ void Coupler::computeForcesFromSamples(const FluidView& fluid, dem::ParticleSet&
     if (w.buoyancy) particleOnly += force::buoyancy(rho, volume, gravity_);
     if (w.virtualMass)
       exchangedOther += force::virtualMass(w.virtualMassCoefficient, rho, volume, slip,
-                                           previousSlip(p, particles.id[p], slip), fluid.timeStep);
+                                           previousSlip_[p], fluid.timeStep);
     const Vec3 relOmega = force::relativeRotation(particles.angularVelocity[p], vorticityAtParticle_[p]);
     if (w.saffmanMeiLift) exchangedOther += k3 * force::saffmanMeiLift(rho, mu, dPrim, slip, vorticityAtParticle_[p]);
     if (w.magnusLift) exchangedOther += k3 * force::magnusLift(rho, dPrim, relOmega, slip);

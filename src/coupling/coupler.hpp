@@ -61,7 +61,7 @@ struct ForceSwitches {
 };
 
 struct CouplerSettings {
-  ExchangeModel model = ExchangeModel::A;
+  ExchangeModel model = ExchangeModel::A;  // from the fluid solver (fluid.model), not a coupling key
   std::string dragLaw = "di_felice";
   std::string voidFraction = "divided";
   InterpolationMode interpolation = InterpolationMode::Trilinear;
@@ -76,8 +76,11 @@ struct CouplerSettings {
 
 class Coupler {
  public:
-  /// Reads section `coupling` of the case. `periodic` as the Domain's, `gravity` for buoyancy.
-  Coupler(Params& root, const CartesianGrid& grid, const std::array<bool, 3>& periodic, const Vec3& gravity);
+  /// Reads section `coupling` of the case. `periodic` as the Domain's, `gravity` for buoyancy,
+  /// `model` the fluid's momentum form (fluid.model: A -> -eps grad p, B -> -grad p), which decides
+  /// which forces go back to the fluid.
+  Coupler(Params& root, const CartesianGrid& grid, const std::array<bool, 3>& periodic, const Vec3& gravity,
+          ExchangeModel model = ExchangeModel::A);
 
   void computeVoidFraction(const dem::ParticleSet& particles, CouplingFields& fields);
   void computeParticleForces(const FluidView& fluid, const CouplingFields& fields, dem::ParticleSet& particles);
@@ -94,6 +97,9 @@ class Coupler {
   double depositedVolume() const { return depositedVolume_; }   // sum (1 - eps) V_c before clipping, m^3
   double clippedVolume() const { return clippedVolume_; }       // volume lost to min_void_fraction, m^3
   const std::vector<double>& dragCoefficients() const { return beta_; }  // beta_p per particle, kg/s
+  /// Interpolated fluid velocity per particle at the last computeParticleForces (particle order of
+  /// that call), m/s; with dragCoefficients() for a semi-implicit DEM update (implicit_drag.hpp).
+  const std::vector<Vec3>& fluidVelocityAtParticles() const { return fluidVelocityAtParticle_; }
 
   /// Coupling-interval criterion for the smallest particle at slip velocity `slip` (seed 000 eq. 5.30).
   CouplingIntervalCheck checkCouplingInterval(double demTimeStep, int demStepsPerFluidStep,
@@ -113,7 +119,7 @@ class Coupler {
   template <InterpolationMode Mode>
   void sampleFluid(const FluidView& fluid, const CouplingFields& fields, const dem::ParticleSet& particles);
   void computeForcesFromSamples(const FluidView& fluid, dem::ParticleSet& particles);
-  Vec3 previousSlip(std::size_t p, std::int64_t id, const Vec3& current) const;
+  void alignPreviousSlip(const dem::ParticleSet& particles);
   void realignToParticles(const dem::ParticleSet& particles);
   void depositExchange(CouplingFields& fields, bool implicit);
   void smoothExchange(CouplingFields& fields, bool implicit) const;

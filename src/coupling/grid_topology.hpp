@@ -13,9 +13,26 @@
 
 namespace gf::coupling {
 
+/// floor(x) as int without a libm call (x within int range).
+inline int floorToInt(double x) {
+  const int i = static_cast<int>(x);
+  return x < i ? i - 1 : i;
+}
+
 struct GridTopology {
   CartesianGrid grid;
   std::array<bool, 3> periodic{false, false, false};
+  Vec3 inverseSpacing{1.0, 1.0, 1.0};
+
+  GridTopology() = default;
+  GridTopology(const CartesianGrid& g, const std::array<bool, 3>& p)
+      : grid(g), periodic(p), inverseSpacing{1.0 / g.spacing.x, 1.0 / g.spacing.y, 1.0 / g.spacing.z} {}
+
+  /// Unwrapped cell index of a point (may lie outside [0, n)).
+  std::array<int, 3> rawCellOf(const Vec3& p) const {
+    return {floorToInt((p.x - grid.origin.x) * inverseSpacing.x), floorToInt((p.y - grid.origin.y) * inverseSpacing.y),
+            floorToInt((p.z - grid.origin.z) * inverseSpacing.z)};
+  }
 
   int mapIndex(int i, int axis) const {
     const int n = grid.cells[axis];
@@ -29,7 +46,7 @@ struct GridTopology {
   }
   /// Interior cell of a point (wrapped / folded like mapIndex).
   std::array<int, 3> cellOf(const Vec3& p) const {
-    const auto c = grid.cellOf(p);
+    const auto c = rawCellOf(p);
     return {mapIndex(c[0], 0), mapIndex(c[1], 1), mapIndex(c[2], 2)};
   }
   /// Flat index of interior cell (i, j, k) in any cell-centred Field on this grid.

@@ -30,12 +30,12 @@ inline TrilinearWeights trilinearWeights(const GridTopology& t, const Vec3& x) {
   double frac[3];
   for (int a = 0; a < 3; ++a) {
     const int n = t.grid.cells[a];
-    double s = (x[a] - t.grid.origin[a]) / t.grid.spacing[a] - 0.5;
+    double s = (x[a] - t.grid.origin[a]) * t.inverseSpacing[a] - 0.5;
     if (!t.periodic[a]) s = std::min(std::max(s, 0.0), static_cast<double>(n - 1));
-    const double f = std::floor(s);
+    const int f = floorToInt(s);
     frac[a] = s - f;
-    lo[a] = t.mapIndex(static_cast<int>(f), a);
-    hi[a] = t.mapIndex(static_cast<int>(f) + 1, a);
+    lo[a] = t.mapIndex(f, a);
+    hi[a] = t.mapIndex(f + 1, a);
   }
   TrilinearWeights w{};
   int m = 0;

@@ -20,8 +20,13 @@ double solveIncreasing(const std::function<double(double)>& residual, double hi)
 
 }  // namespace
 
-double terminalVelocity(const DragLaw& law, const SettlingFluid& fluid, double d, double rhoP, double g) {
-  return hinderedSettlingVelocity(law, fluid, d, rhoP, g, 1.0);
+double terminalVelocity(const DragLaw& law, const SettlingFluid& f, double d, double rhoP, double g, double eps) {
+  const double load = (rhoP - f.density) * std::numbers::pi / 6.0 * d * d * d * g;
+  auto residual = [&](double v) {
+    const double re = f.density * v * d / f.viscosity;
+    return particleDragCoefficient(f.viscosity, d, law.correction(re, eps)) * v - load;
+  };
+  return solveIncreasing(residual, load / (3.0 * std::numbers::pi * f.viscosity * d));
 }
 
 double hinderedSettlingVelocity(const DragLaw& law, const SettlingFluid& f, double d, double rhoP, double g,

@@ -10,9 +10,11 @@ struct SettlingFluid {
   double viscosity;  // Pa s
 };
 
-/// Terminal velocity (m/s) of one sphere at void fraction eps = 1 from the law:
-///   3 pi mu d f(Re) v = (rho_p - rho_f) V g, solved by bisection.
-double terminalVelocity(const DragLaw& law, const SettlingFluid& fluid, double d, double particleDensity, double g);
+/// Terminal velocity (m/s) of one sphere in quiescent fluid (hydrostatic pressure) from the law,
+/// evaluated at void fraction eps (1: isolated):  3 pi mu d f(Re, eps) v = (rho_p - rho_f) V g,
+/// solved by bisection.
+double terminalVelocity(const DragLaw& law, const SettlingFluid& fluid, double d, double particleDensity, double g,
+                        double eps = 1.0);
 
 /// Settling velocity (m/s, relative to the container) of a homogeneous monodisperse suspension at
 /// void fraction eps, zero net volume flux (eps u_f + (1 - eps) v = 0) and model-A forces:

@@ -2,6 +2,8 @@
 
 #include <numbers>
 
+#include "core/parallel.hpp"
+
 namespace gf::dem {
 
 std::size_t ParticleSet::add(std::int64_t newId, std::int32_t materialType, double r, double density, const Vec3& x,
@@ -18,6 +20,43 @@ std::size_t ParticleSet::add(std::int64_t newId, std::int32_t materialType, doub
   externalForce.push_back({});
   externalTorque.push_back({});
   return id.size() - 1;
+}
+
+void ParticleSet::reserve(std::size_t n) {
+  id.reserve(n);
+  type.reserve(n);
+  radius.reserve(n);
+  mass.reserve(n);
+  position.reserve(n);
+  velocity.reserve(n);
+  angularVelocity.reserve(n);
+  force.reserve(n);
+  torque.reserve(n);
+  externalForce.reserve(n);
+  externalTorque.reserve(n);
+}
+
+namespace {
+template <class T>
+void gatherArray(std::vector<T>& a, const std::vector<std::uint32_t>& order) {
+  std::vector<T> out(order.size());
+  parallelFor(static_cast<std::int64_t>(order.size()), [&](std::int64_t k) { out[k] = a[order[k]]; });
+  a.swap(out);
+}
+}  // namespace
+
+void ParticleSet::gather(const std::vector<std::uint32_t>& order) {
+  gatherArray(id, order);
+  gatherArray(type, order);
+  gatherArray(radius, order);
+  gatherArray(mass, order);
+  gatherArray(position, order);
+  gatherArray(velocity, order);
+  gatherArray(angularVelocity, order);
+  gatherArray(force, order);
+  gatherArray(torque, order);
+  gatherArray(externalForce, order);
+  gatherArray(externalTorque, order);
 }
 
 void ParticleSet::save(BinaryWriter& out) const {

@@ -24,11 +24,16 @@ struct ParticleSet {
 
   std::size_t size() const { return id.size(); }
 
-  /// Appends one particle at rest; returns its index.
+  /// Appends one particle; returns its index.
   std::size_t add(std::int64_t newId, std::int32_t materialType, double r, double density, const Vec3& x,
                   const Vec3& v = {}, const Vec3& omega = {});
   /// Moment of inertia of a solid sphere, I = 2/5 m r^2.
   double inertia(std::size_t i) const { return 0.4 * mass[i] * radius[i] * radius[i]; }
+
+  /// Reorders all arrays: new index k holds the particle that had index order[k].
+  /// Particles whose old index is not in `order` are dropped (removal).
+  void gather(const std::vector<std::uint32_t>& order);
+  void reserve(std::size_t n);
 
   void save(BinaryWriter& out) const;
   void load(BinaryReader& in);

@@ -2,179 +2,386 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/parallel.hpp"
 
 namespace gf::dem {
 
-namespace {
-
-std::vector<Material> readMaterials(Params& root) {
-  std::vector<Material> out;
-  for (Params& m : root.list({"materials", "-", "particle materials (index = position in the list)"})) {
-    Material mat;
-    mat.name = m.text({"name", "-", "material name"});
-    mat.density = m.real({"density", "kg/m^3", "solid density", Range::positive()});
-    mat.youngsModulus = m.real({"youngs_modulus", "Pa", "Young's modulus E", Range::positive()}, 1e7);
-    mat.poissonRatio = m.real({"poisson_ratio", "-", "Poisson ratio", Range{-1.0, 0.5, false, false}}, 0.3);
-    mat.restitution = m.real({"restitution", "-", "coefficient of restitution e", Range{0.0, 1.0, false, true}}, 0.5);
-    mat.friction = m.real({"friction", "-", "sliding friction coefficient", Range::nonNegative()}, 0.5);
-    out.push_back(mat);
-  }
-  if (out.empty() && !root.documenting())
-    root.fail("materials", "no material", "a list with at least one material (name, density, ...)");
-  return out;
+System::System(Params& root, const Domain& domain, const Vec3& gravity)
+    : domain_(domain), box_(domain), gravity_(gravity), table_(root) {
+  readWalls(root);
+  InsertionCommon::table() = &table_;
+  for (Params& ins : root.list({"insertion", "-", "particle insertion (initial and rate-based)"}))
+    inserters_.push_back(Registry<Inserter>::instance().create(ins, {"type", "-", "insertion method"}));
+  for (Params& o : root.list({"outlets", "-", "deletion regions (particles entering are removed)"}))
+    outlets_.emplace_back(o);
+  Params ns = root.section({"neighbour_search", "-", "Verlet lists on linked cells"});
+  neighbour_.skin = ns.real({"skin", "m", "Verlet skin (0: 0.1 x largest diameter)", Range::nonNegative()}, 0.0);
+  neighbour_.reorderInterval = static_cast<int>(ns.integer(
+      {"reorder_interval", "-", "Morton (space-filling curve) reordering every this many rebuilds (0: never)",
+       Range::atLeast(0)},
+      20));
+  if (root.documenting()) return;
+  updateWalls();
+  insertAndRemove(0.0);
+  refresh();
 }
 
-}  // namespace
-
-System::System(Params& root, const Domain& domain, const Vec3& gravity) : domain_(domain), gravity_(gravity) {
-  materials_ = readMaterials(root);
-
-  for (Params& w : root.list({"walls", "-", "walls bounding the particles"})) {
-    w.choice({"type", "-", "wall type"}, {"plane"});
-    PlaneWall wall;
-    wall.point = w.vec3({"point", "m", "a point on the plane"});
-    const Vec3 n = w.vec3({"normal", "-", "normal pointing into the particle region"});
-    if (!w.documenting() && norm(n) == 0.0) w.fail("normal", "[0, 0, 0]", "a non-zero vector");
-    wall.normal = normalized(n);
-    walls_.push_back(wall);
-  }
-
-  std::int64_t nextId = 0;
-  for (Params& ins : root.list({"insertion", "-", "initial particle insertion"})) {
-    ins.choice({"type", "-", "insertion method"}, {"lattice"});
-    const Vec3 origin = ins.vec3({"origin", "m", "centre of the first particle"});
-    const double spacing = ins.real({"spacing", "m", "lattice spacing", Range::positive()});
-    const double count[3] = {
-        static_cast<double>(ins.integer({"nx", "-", "particles along x", Range::atLeast(1)}, 1)),
-        static_cast<double>(ins.integer({"ny", "-", "particles along y", Range::atLeast(1)}, 1)),
-        static_cast<double>(ins.integer({"nz", "-", "particles along z", Range::atLeast(1)}, 1))};
-    const double diameter = ins.real({"diameter", "m", "particle diameter", Range::positive()});
-    const Vec3 velocity = ins.vec3({"velocity", "m/s", "initial velocity"}, {});
-    const std::string materialName = ins.text({"material", "-", "material name"}, materials_.empty() ? "" : materials_[0].name);
-    if (ins.documenting()) continue;
-    int materialIndex = -1;
-    for (std::size_t m = 0; m < materials_.size(); ++m)
-      if (materials_[m].name == materialName) materialIndex = static_cast<int>(m);
-    if (materialIndex < 0) ins.fail("material", "'" + materialName + "'", "the name of a material in 'materials'");
-    for (int k = 0; k < count[2]; ++k)
-      for (int j = 0; j < count[1]; ++j)
-        for (int i = 0; i < count[0]; ++i) {
-          const Vec3 x = origin + Vec3{i * spacing, j * spacing, k * spacing};
-          if (!domain_.contains(x))
-            ins.fail("origin", fmt::format("a particle at ({:g}, {:g}, {:g}) outside the domain", x.x, x.y, x.z),
-                     "all lattice points inside 'domain'");
-          particles_.add(nextId++, materialIndex, 0.5 * diameter, materials_[materialIndex].density, x, velocity);
+void System::readWalls(Params& root) {
+  const double reachDefault = norm(domain_.size());
+  for (Params& w : root.list({"walls", "-", "walls (geometry by type, optional prescribed motion)"})) {
+    auto wall = Registry<Wall>::instance().create(w, {"type", "-", "wall type"});
+    const std::string name = w.text({"name", "-", "wall name (for monitors)"}, fmt::format("wall{}", wallNames_.size()));
+    const int material = table_.readMaterial(w, {"material", "-", "wall material name"});
+    WallMotion motion;
+    motion.velocity = w.vec3({"velocity", "m/s", "translation velocity of the wall"}, {});
+    motion.angularVelocity = w.vec3({"angular_velocity", "rad/s", "angular velocity about 'centre'"}, {});
+    motion.centre = w.vec3({"centre", "m", "centre of rotation at t = 0 (moves with the wall)"}, {});
+    const double activeUntil = w.real({"active_until", "s", "the wall disappears at this time (e.g. an orifice plug)",
+                                       Range::nonNegative()},
+                                      std::numeric_limits<double>::infinity());
+    if (w.documenting()) continue;
+    wallActiveUntil_.push_back(activeUntil);
+    const int index = static_cast<int>(wallNames_.size());
+    wallNames_.push_back(name);
+    wallMaterial_.push_back(material);
+    wallMotion_.push_back(motion);
+    // Geometry moves under the rotation unless every primitive is symmetric about the spin axis
+    // through the centre (a drum spinning about its own axis, a plane spinning in itself).
+    bool moves = false;
+    double reach = 0.0;
+    const double spin = norm(motion.angularVelocity);
+    const Vec3 spinAxis = spin > 0.0 ? motion.angularVelocity / spin : Vec3{};
+    for (WallPrimitive prim : wall->primitives()) {
+      prim.wall = index;
+      if (spin > 0.0) {
+        if (prim.kind == PrimitiveKind::Axisymmetric) {
+          const Vec3 offset = motion.centre - prim.a;
+          const bool onAxis = norm(offset - dot(offset, prim.b) * prim.b) < 1e-12 * (1.0 + norm(offset));
+          moves |= !(norm(cross(prim.b, spinAxis)) < 1e-12 && onAxis);
+          reach = std::max({reach, norm(prim.a - motion.centre) + prim.length + std::max(prim.r0, prim.r1)});
+        } else if (prim.kind == PrimitiveKind::Plane) {
+          moves |= !(norm(cross(prim.b, spinAxis)) < 1e-12);
+          reach = std::max(reach, reachDefault + norm(prim.a - motion.centre));
+        } else {
+          moves = true;
+          for (const Vec3& v : {prim.a, prim.b, prim.c}) reach = std::max(reach, norm(v - motion.centre));
         }
+      }
+      referencePrimitives_.push_back(prim);
+    }
+    wallGeometryMoves_.push_back(moves);
+    wallReach_.push_back(reach);
   }
-  computeForces();
+  primitives_ = referencePrimitives_;
+  wallVelocity_.resize(wallNames_.size());
+  wallAngularVelocity_.resize(wallNames_.size());
+  wallCentre_.resize(wallNames_.size());
 }
 
-double System::rayleighTime() const {
-  // Rayleigh time t_R = pi r sqrt(rho/G) / (0.1631 nu + 0.8766) (e.g. Li et al. 2005).
-  double tMin = std::numeric_limits<double>::infinity();
+void System::updateWalls() {
+  for (std::size_t w = 0; w < wallMotion_.size(); ++w) {
+    wallVelocity_[w] = wallMotion_[w].velocity;
+    wallAngularVelocity_[w] = wallMotion_[w].angularVelocity;
+    wallCentre_[w] = wallMotion_[w].centre + time_ * wallMotion_[w].velocity;
+  }
+  for (std::size_t k = 0; k < referencePrimitives_.size(); ++k) {
+    const WallPrimitive& ref = referencePrimitives_[k];
+    primitives_[k].active = time_ < wallActiveUntil_[ref.wall];
+    const WallMotion& m = wallMotion_[ref.wall];
+    if (m.velocity == Vec3{} && m.angularVelocity == Vec3{}) continue;
+    const Vec3 theta = time_ * m.angularVelocity;
+    const Vec3 c = wallCentre_[ref.wall];
+    auto movePoint = [&](const Vec3& x) { return c + rotate(x - m.centre, theta); };
+    WallPrimitive& cur = primitives_[k];
+    cur.a = movePoint(ref.a);
+    if (ref.kind == PrimitiveKind::Triangle) {
+      cur.b = movePoint(ref.b);
+      cur.c = movePoint(ref.c);
+    } else {
+      cur.b = rotate(ref.b, theta);  // normal or axis
+    }
+  }
+}
+
+bool System::insertAndRemove(double dt) {
+  bool changed = false;
+  InsertionContext ctx{particles_, nextId_, domain_};
+  for (auto& ins : inserters_) changed |= ins->insert(ctx, time_, dt) > 0;
+  if (outlets_.empty()) return changed;
+  // Outlets: remove particles whose centre is inside a deletion box.
+  std::vector<std::uint32_t> keep;
+  keep.reserve(particles_.size());
+  bool removed = false;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
-    const Material& m = materials_[particles_.type[i]];
-    const double shearModulus = m.youngsModulus / (2.0 * (1.0 + m.poissonRatio));
-    const double t = std::numbers::pi * particles_.radius[i] * std::sqrt(m.density / shearModulus) /
-                     (0.1631 * m.poissonRatio + 0.8766);
-    tMin = std::min(tMin, t);
+    bool inside = false;
+    for (Outlet& o : outlets_)
+      if (o.contains(particles_.position[i])) {
+        o.removedMass += particles_.mass[i];
+        ++o.removedCount;
+        inside = true;
+        break;
+      }
+    if (inside) removed = true;
+    else keep.push_back(static_cast<std::uint32_t>(i));
   }
-  return tMin;
+  if (removed) {
+    // Removal is applied in rebuild(); here only the order without the removed particles.
+    rebuild(std::move(keep), list_.rows());
+    return false;
+  }
+  return changed;
 }
 
-namespace {
-// Hertz normal force with viscoelastic damping (Tsuji et al. 1992 form used by LIGGGHTS
-// 'hertz'): F = 4/3 E* sqrt(R* d) d - 2 sqrt(5/6) beta sqrt(S_n m*) v_n, S_n = 2 E* sqrt(R* d),
-// beta = ln e / sqrt(ln^2 e + pi^2).
-double hertzNormalForce(double overlap, double normalVelocity, double effectiveE, double effectiveR,
-                        double effectiveMass, double restitution) {
-  const double sqrtRd = std::sqrt(effectiveR * overlap);
-  const double stiffness = 2.0 * effectiveE * sqrtRd;
-  const double logE = std::log(restitution);
-  const double beta = logE / std::sqrt(logE * logE + std::numbers::pi * std::numbers::pi);
-  const double elastic = 4.0 / 3.0 * effectiveE * sqrtRd * overlap;
-  const double damping = 2.0 * std::sqrt(5.0 / 6.0) * beta * std::sqrt(stiffness * effectiveMass) * normalVelocity;
-  return elastic + damping;
+void System::refresh() {
+  std::vector<std::uint32_t> order(particles_.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+  rebuild(std::move(order), list_.rows());
+  computeForces(0.0);
 }
-}  // namespace
 
-void System::computeForces() {
-  ParticleSet& p = particles_;
-  const std::int64_t n = static_cast<std::int64_t>(p.size());
-  parallelFor(n, [&](std::int64_t i) {
-    p.force[i] = p.mass[i] * gravity_ + p.externalForce[i];
-    p.torque[i] = p.externalTorque[i];
-  });
+bool System::needsRebuild(double particleMove) const {
+  if (list_.rows() != particles_.size() || positionAtBuild_.size() != particles_.size()) return true;
+  double wallMove = 0.0;
+  const double elapsed = time_ - timeAtBuild_;
+  for (std::size_t w = 0; w < wallMotion_.size(); ++w)
+    wallMove = std::max(wallMove, elapsed * (norm(wallMotion_[w].velocity) +
+                                             (wallGeometryMoves_[w] ? norm(wallMotion_[w].angularVelocity) * wallReach_[w]
+                                                                    : 0.0)));
+  // Pairs: both may approach by the displacement; walls: particle plus wall movement.
+  return 2.0 * particleMove > skin_ || particleMove + wallMove > skin_;
+}
+
+void System::rebuild(std::vector<std::uint32_t> order, std::size_t listedRows) {
+  ScopedPhase timer(timers_, Phase::NeighbourSearch);
+  double maxDiameter = 0.0;
+  for (double r : particles_.radius) maxDiameter = std::max(maxDiameter, 2.0 * r);
+  skin_ = neighbour_.skin > 0.0 ? neighbour_.skin : 0.1 * maxDiameter;
+  // Periodic Morton reordering for cache locality (applied on top of removals).
+  if (neighbour_.reorderInterval > 0 && rebuilds_ % neighbour_.reorderInterval == 0 && !order.empty()) {
+    std::vector<Vec3> x(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) x[k] = particles_.position[order[k]];
+    const std::vector<std::uint32_t> morton = mortonOrder(x, domain_.min, domain_.max, maxDiameter + skin_);
+    std::vector<std::uint32_t> combined(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) combined[k] = order[morton[k]];
+    order.swap(combined);
+  }
+  bool identity = order.size() == particles_.size();
+  for (std::size_t k = 0; identity && k < order.size(); ++k) identity = order[k] == k;
+  if (!identity) particles_.gather(order);
+  std::vector<std::int64_t> previous(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) previous[k] = order[k] < listedRows ? order[k] : -1;
+  const bool rollingHistory = table_.rollingLaw() == RollingLaw::Epsd;
+  list_.build(particles_, box_, domain_.min, domain_.max, skin_, previous, rollingHistory);
+  wallList_.build(particles_, primitives_, skin_, previous, rollingHistory);
+  positionAtBuild_ = particles_.position;
+  timeAtBuild_ = time_;
+  ++rebuilds_;
+}
+
+void System::computeForces(double dt) {
   ScopedPhase timer(timers_, Phase::Contacts);
-  parallelFor(n, [&](std::int64_t i) {
-    const Material& mi = materials_[p.type[i]];
-    const double Ei = mi.youngsModulus / (1.0 - mi.poissonRatio * mi.poissonRatio);
-    for (std::int64_t j = 0; j < n; ++j) {
-      if (j == i) continue;
-      const Vec3 d = p.position[i] - p.position[j];
-      const double dist2 = normSquared(d);
-      const double rsum = p.radius[i] + p.radius[j];
-      if (dist2 >= rsum * rsum) continue;
-      const double dist = std::sqrt(dist2);
-      const Vec3 normal = d / dist;
-      const Material& mj = materials_[p.type[j]];
-      const double Ej = mj.youngsModulus / (1.0 - mj.poissonRatio * mj.poissonRatio);
-      const double effectiveE = 1.0 / (1.0 / Ei + 1.0 / Ej);
-      const double effectiveR = p.radius[i] * p.radius[j] / rsum;
-      const double effectiveMass = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
-      const double vn = dot(p.velocity[i] - p.velocity[j], normal);
-      const double e = 0.5 * (mi.restitution + mj.restitution);
-      const double f = hertzNormalForce(rsum - dist, vn, effectiveE, effectiveR, effectiveMass, e);
-      p.force[i] += f * normal;
-    }
-    for (const PlaneWall& w : walls_) {
-      const double gap = dot(p.position[i] - w.point, w.normal);
-      const double overlap = p.radius[i] - gap;
-      if (overlap <= 0.0) continue;
-      const double vn = dot(p.velocity[i], w.normal);
-      const double f = hertzNormalForce(overlap, vn, Ei, p.radius[i], p.mass[i], mi.restitution);
-      p.force[i] += f * w.normal;
-    }
-  });
+  const WallState walls{&primitives_, &wallMaterial_, &wallVelocity_, &wallAngularVelocity_, &wallCentre_};
+  dispatchLaws(table_.normalLaw(), table_.rollingLaw(), table_.cohesionLaw(),
+               [&]<NormalLaw N, RollingLaw R, CohesionLaw C>() {
+                 particleContactForces<N, R, C>(particles_, list_, table_, box_, gravity_, dt, buffers_);
+                 if (!primitives_.empty()) wallContactForces<N, R, C>(particles_, wallList_, table_, walls, dt);
+               });
 }
 
 void System::step(double dt) {
   ParticleSet& p = particles_;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
+  double maxDisplacement2 = 0.0;
   {
-    // Velocity Verlet: half kick with old forces, drift.
+    // Velocity Verlet (translation and rotation of spheres): half kick with old forces, drift;
+    // the largest displacement since the last list build comes with the drift.
     ScopedPhase timer(timers_, Phase::Integration);
-    parallelFor(n, [&](std::int64_t i) {
-      p.velocity[i] += 0.5 * dt / p.mass[i] * p.force[i];
-      p.position[i] += dt * p.velocity[i];
+    const bool tracked = positionAtBuild_.size() == p.size();
+#pragma omp parallel for schedule(static) reduction(max : maxDisplacement2)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const double invMass = 1.0 / p.mass[i];
+      p.velocity[i] += (0.5 * dt * invMass) * p.force[i];
+      p.angularVelocity[i] += (0.5 * dt * invMass / (0.4 * p.radius[i] * p.radius[i])) * p.torque[i];
+      p.position[i] = box_.wrap(p.position[i] + dt * p.velocity[i]);
+      if (tracked)
+        maxDisplacement2 =
+            std::max(maxDisplacement2, normSquared(box_.minimumImage(p.position[i] - positionAtBuild_[i])));
+    }
+  }
+  time_ += dt;
+  updateWalls();
+  const std::size_t before = p.size();
+  const bool inserted = insertAndRemove(dt);
+  if (inserted || needsRebuild(std::sqrt(maxDisplacement2))) {
+    std::vector<std::uint32_t> order(p.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+    rebuild(std::move(order), std::min(before, list_.rows()));
+  }
+  computeForces(dt);
+  {
+    ScopedPhase timer(timers_, Phase::Integration);
+    parallelFor(static_cast<std::int64_t>(p.size()), [&](std::int64_t i) {
+      const double invMass = 1.0 / p.mass[i];
+      p.velocity[i] += (0.5 * dt * invMass) * p.force[i];
+      p.angularVelocity[i] += (0.5 * dt * invMass / (0.4 * p.radius[i] * p.radius[i])) * p.torque[i];
     });
   }
-  computeForces();
-  ScopedPhase timer(timers_, Phase::Integration);
-  parallelFor(n, [&](std::int64_t i) { p.velocity[i] += 0.5 * dt / p.mass[i] * p.force[i]; });
+  ++steps_;
 }
+
+double System::rayleighTime() const {
+  double tMin = std::numeric_limits<double>::infinity();
+  const auto& mats = table_.materials();
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    const Material& m = mats[particles_.type[i]];
+    tMin = std::min(tMin, dem::rayleighTime(particles_.radius[i], m.density, m.youngsModulus, m.poissonRatio));
+  }
+  return tMin;
+}
+
+TimeStepStatus System::checkTimeStep(double dt) const { return dem::checkTimeStep(dt, rayleighTime()); }
 
 void System::checkHealth(long long step, double time) const {
   const ParticleSet& p = particles_;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (!isFinite(p.position[i]) || !isFinite(p.velocity[i]))
+    if (!isFinite(p.position[i]) || !isFinite(p.velocity[i]) || !isFinite(p.angularVelocity[i]))
       throw DivergenceError(step, time, "particle position/velocity is NaN or Inf",
                             fmt::format("particle id {}", p.id[i]), p.position[i], "reduce the time step");
-    Vec3 x = p.position[i];
+    const Vec3 x = p.position[i];
     bool inside = true;
     for (int a = 0; a < 3; ++a)
       if (!domain_.periodic[a] && (x[a] < domain_.min[a] || x[a] > domain_.max[a])) inside = false;
     if (!inside)
       throw DivergenceError(step, time, "particle left the domain", fmt::format("particle id {}", p.id[i]), x,
-                            "no outlet removes it; check walls and time step");
+                            "no wall or outlet holds it; check walls, outlets and the time step");
   }
 }
 
-void System::save(BinaryWriter& out) const { particles_.save(out); }
-void System::load(BinaryReader& in) { particles_.load(in); }
+std::vector<WallLoad> System::wallLoads() const {
+  std::vector<WallLoad> loads(wallNames_.size());
+  for (std::size_t w = 0; w < loads.size(); ++w) loads[w].name = wallNames_[w];
+  // Serial sum in entry order: deterministic.
+  for (std::size_t k = 0; k < wallList_.entries(); ++k) {
+    const Vec3& f = wallList_.force[k];
+    if (f == Vec3{}) continue;
+    const int w = primitives_[wallList_.primitive[k]].wall;
+    loads[w].force -= f;
+    loads[w].torque -= cross(wallList_.point[k] - wallCentre_[w], f);
+  }
+  return loads;
+}
+
+ContactStatistics System::contactStatistics() const {
+  ContactStatistics s;
+  const ParticleSet& p = particles_;
+  for (std::size_t i = 0; i < list_.rows() && i < p.size(); ++i) {
+    for (std::uint32_t k = list_.rowStart[i]; k < list_.rowStart[i + 1]; ++k) {
+      const std::uint32_t j = list_.partner[k];
+      const double overlap = p.radius[i] + p.radius[j] - norm(box_.minimumImage(p.position[i] - p.position[j]));
+      if (overlap <= 0.0) continue;
+      ++s.particleContacts;
+      s.maxOverlapRatio = std::max(s.maxOverlapRatio, overlap / std::min(p.radius[i], p.radius[j]));
+    }
+    for (std::uint32_t k = wallList_.rowStart[i]; k < wallList_.rowStart[i + 1]; ++k) {
+      const WallPrimitive& w = primitives_[wallList_.primitive[k]];
+      const double overlap = w.active ? p.radius[i] - distanceToPrimitive(w, p.position[i]).distance : 0.0;
+      if (overlap <= 0.0) continue;
+      ++s.wallContacts;
+      s.maxOverlapRatio = std::max(s.maxOverlapRatio, overlap / p.radius[i]);
+    }
+  }
+  s.coordinationNumber = p.size() ? 2.0 * static_cast<double>(s.particleContacts) / static_cast<double>(p.size()) : 0.0;
+  return s;
+}
+
+EnergyBalance System::energy() const {
+  EnergyBalance e;
+  const ParticleSet& p = particles_;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    e.translational += 0.5 * p.mass[i] * normSquared(p.velocity[i]);
+    e.rotational += 0.5 * p.inertia(i) * normSquared(p.angularVelocity[i]);
+    e.gravitational -= p.mass[i] * dot(gravity_, p.position[i]);
+  }
+  // Elastic energy of the normal springs: Hertz 2/5 k d^(5/2), Hooke 1/2 k d^2.
+  auto stored = [&](const PairCoefficients& c, double effectiveRadius, double overlap) {
+    if (table_.normalLaw() == NormalLaw::Hooke) return 0.5 * c.normalStiffness * overlap * overlap;
+    return 0.4 * hertz::stiffnessPrefactor(c.effectiveYoungs, effectiveRadius) * overlap * overlap * std::sqrt(overlap);
+  };
+  for (std::size_t i = 0; i < list_.rows() && i < p.size(); ++i) {
+    for (std::uint32_t k = list_.rowStart[i]; k < list_.rowStart[i + 1]; ++k) {
+      const std::uint32_t j = list_.partner[k];
+      const double overlap = p.radius[i] + p.radius[j] - norm(box_.minimumImage(p.position[i] - p.position[j]));
+      if (overlap > 0.0)
+        e.elastic += stored(table_.pair(p.type[i], p.type[j]), p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]),
+                            overlap);
+    }
+    for (std::uint32_t k = wallList_.rowStart[i]; k < wallList_.rowStart[i + 1]; ++k) {
+      const WallPrimitive& w = primitives_[wallList_.primitive[k]];
+      const double overlap = w.active ? p.radius[i] - distanceToPrimitive(w, p.position[i]).distance : 0.0;
+      if (overlap > 0.0) e.elastic += stored(table_.pair(p.type[i], wallMaterial_[w.wall]), p.radius[i], overlap);
+    }
+  }
+  return e;
+}
+
+std::size_t System::memoryBytes() const {
+  const ParticleSet& p = particles_;
+  std::size_t bytes = p.id.capacity() * 8 + p.type.capacity() * 4 + p.radius.capacity() * 8 + p.mass.capacity() * 8 +
+                      (p.position.capacity() + p.velocity.capacity() + p.angularVelocity.capacity() +
+                       p.force.capacity() + p.torque.capacity() + p.externalForce.capacity() +
+                       p.externalTorque.capacity() + positionAtBuild_.capacity()) *
+                          sizeof(Vec3);
+  bytes += list_.memoryBytes();
+  bytes += wallList_.rowStart.capacity() * 4 + wallList_.primitive.capacity() * 4 +
+           (wallList_.tangentialHistory.capacity() + wallList_.rollingHistory.capacity() +
+            wallList_.force.capacity() + wallList_.point.capacity()) *
+               sizeof(Vec3);
+  for (const auto& b : buffers_.force) bytes += 2 * b.capacity() * sizeof(Vec3);
+  return bytes;
+}
+
+void System::save(BinaryWriter& out) const {
+  out.put(time_);
+  out.put(steps_);
+  out.put(nextId_);
+  out.put(rebuilds_);
+  out.put(timeAtBuild_);
+  out.put(skin_);
+  particles_.save(out);
+  list_.save(out);
+  wallList_.save(out);
+  out.putVector(positionAtBuild_);
+  for (const auto& ins : inserters_) ins->save(out);
+  for (const Outlet& o : outlets_) {
+    out.put(o.removedMass);
+    out.put(o.removedCount);
+  }
+}
+
+void System::load(BinaryReader& in) {
+  time_ = in.get<double>();
+  steps_ = in.get<long long>();
+  nextId_ = in.get<std::int64_t>();
+  rebuilds_ = in.get<long long>();
+  timeAtBuild_ = in.get<double>();
+  skin_ = in.get<double>();
+  particles_.load(in);
+  list_.load(in);
+  wallList_.load(in);
+  positionAtBuild_ = in.getVector<Vec3>();
+  if (list_.rows() != particles_.size() || positionAtBuild_.size() != particles_.size())
+    throw CheckpointError("checkpoint is corrupt: DEM lists do not match the particles");
+  for (auto& ins : inserters_) ins->load(in);
+  for (Outlet& o : outlets_) {
+    o.removedMass = in.get<double>();
+    o.removedCount = in.get<long long>();
+  }
+  updateWalls();
+}
 
 }  // namespace gf::dem

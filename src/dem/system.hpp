@@ -1,10 +1,15 @@
 #pragma once
-// The DEM half of the solver: particles, materials, walls, contacts, integration.
+// The DEM half of the solver: particles, materials, walls, contacts, insertion, outlets, integration.
 // Contract used by the application loop and the coupling:
-//   System(root, domain, gravity)  reads the case sections it owns and inserts particles
-//   step(dt)                       one DEM step (forces incl. particles().externalForce, then integrate)
+//   System(root, domain, gravity)  reads the case sections it owns and inserts the initial particles
+//   step(dt)                       one velocity-Verlet step (forces incl. particles().externalForce)
 //   checkHealth(step, time)        throws DivergenceError on NaN/Inf or a particle leaving the domain
-//   save/load                      complete state for bit-identical restarts
+//   checkTimeStep(dt)              dt against the Rayleigh time (warning > 20 %, error > 50 %)
+//   save/load                      complete state (incl. contact history) for bit-identical restarts
+//
+// Case sections read: materials[], contact, walls[], insertion[], outlets[], neighbour_search
+// (see docs/dem.md).
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,22 +17,37 @@
 #include "core/params.hpp"
 #include "core/serialize.hpp"
 #include "core/timers.hpp"
+#include "dem/contact/contact_table.hpp"
+#include "dem/contact_kernel.hpp"
+#include "dem/insertion/inserter.hpp"
+#include "dem/neighbour_list.hpp"
+#include "dem/outlet.hpp"
 #include "dem/particles.hpp"
+#include "dem/periodic_box.hpp"
+#include "dem/time_step_check.hpp"
+#include "dem/wall_contact_list.hpp"
+#include "dem/walls/wall.hpp"
 
 namespace gf::dem {
 
-struct Material {
-  std::string name;
-  double density = 2500.0;        // kg/m^3
-  double youngsModulus = 1e7;     // Pa
-  double poissonRatio = 0.3;      // -
-  double restitution = 0.5;       // -
-  double friction = 0.5;          // -
+struct NeighbourSettings {
+  double skin = 0.0;          // m; 0 = 0.1 x largest diameter
+  int reorderInterval = 20;   // Morton reordering every this many rebuilds (0 = never)
 };
 
-struct PlaneWall {
-  Vec3 point;
-  Vec3 normal;  // unit, pointing into the domain
+struct ContactStatistics {
+  long long particleContacts = 0;   // touching particle pairs
+  long long wallContacts = 0;       // touching particle-wall primitive pairs
+  double coordinationNumber = 0.0;  // 2 particle contacts / particles
+  double maxOverlapRatio = 0.0;     // max overlap / radius (particle-particle: / smaller radius)
+};
+
+struct EnergyBalance {
+  double translational = 0.0;  // J, 1/2 m v^2
+  double rotational = 0.0;     // J, 1/2 I w^2
+  double gravitational = 0.0;  // J, -m g.x
+  double elastic = 0.0;        // J, stored in normal contact springs
+  double total() const { return translational + rotational + gravitational + elastic; }
 };
 
 class System {
@@ -36,24 +56,73 @@ class System {
 
   void step(double dt);
   void checkHealth(long long step, double time) const;
+  /// dt against the Rayleigh time of the smallest/softest particle present.
+  TimeStepStatus checkTimeStep(double dt) const;
 
   ParticleSet& particles() { return particles_; }
   const ParticleSet& particles() const { return particles_; }
-  const std::vector<Material>& materials() const { return materials_; }
-  /// Rayleigh time of the smallest/softest particle (s).
+  const std::vector<Material>& materials() const { return table_.materials(); }
+  const ContactTable& contactTable() const { return table_; }
+  /// Rayleigh time of the smallest/softest particle (s); +inf without particles.
   double rayleighTime() const;
   PhaseTimers& timers() { return timers_; }
+
+  /// After editing particles() directly (tests, coupling): rebuilds lists and forces.
+  void refresh();
+
+  double time() const { return time_; }
+  long long steps() const { return steps_; }
+  long long rebuilds() const { return rebuilds_; }
+  const NeighbourList& neighbourList() const { return list_; }
+  const WallContactList& wallContacts() const { return wallList_; }
+  const std::vector<WallPrimitive>& wallPrimitives() const { return primitives_; }
+  const std::vector<Outlet>& outlets() const { return outlets_; }
+  /// Force and torque the particles exert on each wall (from the last force evaluation).
+  std::vector<WallLoad> wallLoads() const;
+  ContactStatistics contactStatistics() const;
+  EnergyBalance energy() const;
+  std::size_t memoryBytes() const;
 
   void save(BinaryWriter& out) const;
   void load(BinaryReader& in);
 
  private:
-  void computeForces();
+  void readWalls(Params& root);
+  void updateWalls();
+  bool insertAndRemove(double dt);
+  bool needsRebuild(double maxParticleDisplacement) const;
+  void rebuild(std::vector<std::uint32_t> order, std::size_t listedRows);
+  void computeForces(double dt);
+
   Domain domain_;
+  PeriodicBox box_;
   Vec3 gravity_;
   ParticleSet particles_;
-  std::vector<Material> materials_;
-  std::vector<PlaneWall> walls_;
+  ContactTable table_;
+  NeighbourSettings neighbour_;
+  double skin_ = 0.0;
+  NeighbourList list_;
+  WallContactList wallList_;
+  PartnerBuffers buffers_;
+  std::vector<Vec3> positionAtBuild_;
+  double timeAtBuild_ = 0.0;
+  long long rebuilds_ = 0;
+
+  // Walls: reference and current primitives, per-wall kinematics.
+  std::vector<std::string> wallNames_;
+  std::vector<int> wallMaterial_;
+  std::vector<WallMotion> wallMotion_;
+  std::vector<bool> wallGeometryMoves_;
+  std::vector<double> wallReach_;
+  std::vector<double> wallActiveUntil_;  // s  // max distance of the wall's geometry from its centre
+  std::vector<Vec3> wallVelocity_, wallAngularVelocity_, wallCentre_;
+  std::vector<WallPrimitive> referencePrimitives_, primitives_;
+
+  std::vector<std::unique_ptr<Inserter>> inserters_;
+  std::vector<Outlet> outlets_;
+  std::int64_t nextId_ = 0;
+  double time_ = 0.0;
+  long long steps_ = 0;
   PhaseTimers timers_;
 };
 

@@ -122,6 +122,16 @@ std::string particlesVtu(const dem::ParticleSet& p) {
   return out;
 }
 
+VtkArray cellArray(const std::string& name, const Field& field) {
+  VtkArray a{name, 1, {}, {}, false};
+  const auto& n = field.grid().cells;
+  a.real.reserve(field.grid().interiorCellCount());
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) a.real.push_back(field(i, j, k));
+  return a;
+}
+
 std::string cellFieldsVti(const CartesianGrid& grid, const std::vector<VtkArray>& cellArrays) {
   const auto& n = grid.cells;
   std::string out;

@@ -27,6 +27,8 @@ std::vector<unsigned char> base64Decode(const std::string& text);
 
 /// Particle file: points = centres; point data id, type, radius, velocity, angular_velocity, force.
 std::string particlesVtu(const dem::ParticleSet& particles);
+/// The interior values of a cell-centred field, in VTK order (x fastest).
+VtkArray cellArray(const std::string& name, const Field& field);
 /// Cell-centred fields on a grid (interior cells only).
 std::string cellFieldsVti(const CartesianGrid& grid, const std::vector<VtkArray>& cellArrays);
 

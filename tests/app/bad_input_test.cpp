@@ -152,7 +152,7 @@ TEST(BadInput, MissingRequiredSection) {
 
 TEST(BadInput, UnknownMaterialName) {
   expectCheckFails(replaced("material: glass", "material: steel"),
-                   {1, {"insertion[0].material", "'steel'", "a material in 'materials'"}});
+                   {1, {"insertion[0].material", "'steel'", "one of the materials: glass"}});
 }
 
 TEST(BadInput, OutputDirectoryNotWritable) {

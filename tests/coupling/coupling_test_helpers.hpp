@@ -38,9 +38,10 @@ inline dem::ParticleSet randomParticles(int count, double rMin, double rMax, Vec
 /// Coupler from a `coupling:` section given as YAML lines (indented by the caller).
 inline std::unique_ptr<Coupler> makeCoupler(const std::string& couplingBody, const CartesianGrid& grid,
                                             std::array<bool, 3> periodic = {false, false, false},
-                                            Vec3 gravity = {0.0, 0.0, -9.81}) {
+                                            Vec3 gravity = {0.0, 0.0, -9.81},
+                                            ExchangeModel model = ExchangeModel::A) {
   Params p = Params::loadString("coupling:\n" + couplingBody, "test.yaml");
-  auto c = std::make_unique<Coupler>(p, grid, periodic, gravity);
+  auto c = std::make_unique<Coupler>(p, grid, periodic, gravity, model);
   p.checkUnknownKeys();
   return c;
 }

@@ -137,3 +137,31 @@ TEST(Forces, VirtualMassUsesSlipChangeOverTheCouplingIntervalAndSurvivesRestart)
   restarted->computeParticleForces(fluid.view(1000.0, 1e-3, 1e-3), f2, again);
   EXPECT_EQ(again.externalForce[0], one.externalForce[0]);
 }
+
+TEST(Forces, VirtualMassHistoryFollowsParticlesWhenTheDemReordersThem) {
+  const CartesianGrid g = makeGrid({5, 5, 5}, {0.01, 0.01, 0.01});
+  const std::string yaml = "  forces:\n    drag: false\n    pressure_gradient: false\n    viscous_stress: false\n"
+                           "    virtual_mass: true\n";
+  const dem::ParticleSet base = randomParticles(50, 0.001, 0.002, {0, 0, 0}, {0.05, 0.05, 0.05});
+  FluidFields fluid(g);
+  fluid.setVelocity(g, [](const Vec3& x) { return Vec3{x.y, -x.x, 0.1}; });
+  auto first = makeCoupler(yaml, g), second = makeCoupler(yaml, g);
+  dem::ParticleSet a = base, b = base;
+  CouplingFields fa(g), fb(g);
+  first->computeVoidFraction(a, fa);
+  second->computeVoidFraction(b, fb);
+  first->computeParticleForces(fluid.view(1000.0, 1e-3, 1e-3), fa, a);
+  second->computeParticleForces(fluid.view(1000.0, 1e-3, 1e-3), fb, b);
+  dem::ParticleSet reversed;  // the "DEM" of the second run reverses the order
+  for (std::size_t q = b.size(); q-- > 0;)
+    reversed.add(b.id[q], 0, b.radius[q], 2500.0, b.position[q], b.velocity[q], b.angularVelocity[q]);
+  fluid.setVelocity(g, [](const Vec3& x) { return Vec3{2.0 * x.y, -x.x, 0.3}; });
+  first->computeVoidFraction(a, fa);
+  second->computeVoidFraction(reversed, fb);
+  first->computeParticleForces(fluid.view(1000.0, 1e-3, 1e-3), fa, a);
+  second->computeParticleForces(fluid.view(1000.0, 1e-3, 1e-3), fb, reversed);
+  for (std::size_t p = 0; p < a.size(); ++p) {
+    EXPECT_GT(norm(a.externalForce[p]), 0.0);
+    EXPECT_EQ(a.externalForce[p], reversed.externalForce[a.size() - 1 - p]);
+  }
+}

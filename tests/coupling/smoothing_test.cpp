@@ -103,3 +103,11 @@ TEST(Smoothing, SmoothedExplicitExchangeFieldsKeepNewtonsThirdLaw) {
   c->fillFluidSources(f);
   EXPECT_LT(norm(c->momentumBalanceError()), 1e-11 * c->exchangedForceScale());
 }
+
+TEST(Smoothing, ParcelSmoothingLengthScalesWithInverseCubeRootOfConcentration) {
+  // seed 003 eq. 4.10: l/d32 = (l/d32)_ref / (10 phi^(1/3)) for phi_ref = 1e-3; table 4.15: 8.06 d32.
+  const double d32 = 1e-4;
+  EXPECT_NEAR(scaledSmoothingLength(8.06 * d32, 1e-3, 1e-3), 8.06 * d32, 1e-15);
+  EXPECT_NEAR(scaledSmoothingLength(8.06 * d32, 1e-3, 0.008), 8.06 * d32 / (10.0 * 0.2), 1e-15);
+  EXPECT_NEAR(scaledSmoothingLength(8.06 * d32, 1e-3, 0.125), 8.06 * d32 / (10.0 * 0.5), 1e-15);
+}

@@ -40,14 +40,14 @@ class BigParticleVoidFraction final : public VoidFractionScheme {
       StencilWriter w(stencils, static_cast<std::size_t>(p));
       const Vec3 x = particles.position[p];
       const double r = particles.radius[p];
-      const auto lo = g.cellOf(x - Vec3{r, r, r});
+      const auto lo = topology.rawCellOf(x - Vec3{r, r, r});
       const double h = 2.0 * r / n;  // lattice spacing; points at offsets (i + 1/2) h - r
       for (int k = 0; k < n; ++k)
         for (int j = 0; j < n; ++j)
           for (int i = 0; i < n; ++i) {
             const Vec3 d{(i + 0.5) * h - r, (j + 0.5) * h - r, (k + 0.5) * h - r};
             if (normSquared(d) > r * r) continue;
-            const auto c = g.cellOf(x + d);
+            const auto c = topology.rawCellOf(x + d);
             const int li = std::clamp(c[0] - lo[0], 0, box[0] - 1), lj = std::clamp(c[1] - lo[1], 0, box[1] - 1),
                       lk = std::clamp(c[2] - lo[2], 0, box[2] - 1);
             counts[(static_cast<std::size_t>(lk) * box[1] + lj) * box[0] + li] += 1.0;

@@ -59,7 +59,7 @@ class KernelVoidFraction final : public VoidFractionScheme {
       StencilWriter w(stencils, static_cast<std::size_t>(p));
       const Vec3 x = particles.position[p];
       const double h = std::max(radiusFactor_ * cellSize, particles.radius[p]);
-      const auto c = g.cellOf(x);  // unwrapped; neighbours mapped per axis
+      const auto c = topology.rawCellOf(x);  // unwrapped; neighbours mapped per axis
       AxisWeights axis[3];
       for (int a = 0; a < 3; ++a) {
         for (int o = -reach[a]; o <= reach[a]; ++o) {

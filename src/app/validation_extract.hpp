@@ -1,0 +1,57 @@
+#pragma once
+// Pure extraction operations of `grainflow validate`: reduce a monitor series y(x) (x usually
+// time) to one number, compare numbers and curves against reference data. No I/O here, so
+// every operation is unit-tested on synthetic series (tests/validation/extract_test.cpp).
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gf::app::validation {
+
+/// A sampled curve y(x) with non-decreasing x.
+struct Series {
+  std::vector<double> x;
+  std::vector<double> y;
+};
+
+/// The samples with x in [from, to] (inclusive).
+Series window(const Series& s, double from, double to);
+
+/// Linear interpolation at x0; x0 outside [x.front(), x.back()] is an error (std::nullopt).
+std::optional<double> interpolate(const Series& s, double x0);
+
+double finalValue(const Series& s);
+double initialValue(const Series& s);
+double minimum(const Series& s);
+double maximum(const Series& s);
+/// Time-weighted (trapezoidal) mean over the series' x range; the plain value for one sample.
+double mean(const Series& s);
+/// First x where y crosses `threshold` (either direction), linearly interpolated; nullopt if never.
+std::optional<double> firstCrossing(const Series& s, double threshold);
+/// Length in x of the first interval where y > threshold, both ends interpolated; nullopt if
+/// y never rises above the threshold or has not fallen back below it by the end.
+std::optional<double> durationAbove(const Series& s, double threshold);
+
+/// Least-squares slope of log|y| over log|x| (observed order of convergence); needs >= 2 points.
+double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
+
+struct Tolerance {
+  double value = 0.0;
+  bool relative = false;  // relative to |reference|; for curves to max |reference|
+};
+
+/// One compared number: the error is signed (computed - reference), relative when the tolerance is.
+struct Comparison {
+  double reference = 0.0;
+  double computed = 0.0;
+  double error = 0.0;
+  bool pass = false;
+};
+Comparison compareValue(double computed, double reference, const Tolerance& tolerance);
+
+/// A computed curve against reference points (xr, yr): the computed curve is interpolated at
+/// each xr inside its range; the reported comparison is the point of largest |error| (a relative
+/// error is divided by max |yr|). nullopt if no reference point lies inside the computed range.
+std::optional<Comparison> compareCurve(const Series& computed, const Series& reference, const Tolerance& tolerance);
+
+}  // namespace gf::app::validation

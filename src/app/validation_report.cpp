@@ -1,0 +1,203 @@
+#include "app/validation_report.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <array>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+
+#include "app/plot.hpp"
+#include "io/atomic_file.hpp"
+
+namespace gf::app::validation {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string commandOutput(const std::string& command) {
+  std::string out;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return out;
+  std::array<char, 512> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) out += buffer.data();
+  ::pclose(pipe);
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out;
+}
+
+std::string formatTolerance(const Tolerance& t) {
+  return t.relative ? fmt::format("{:.3g} %", 100.0 * t.value) : fmt::format("{:.3g}", t.value);
+}
+std::string formatError(const Row& r) {
+  if (!r.comparison) return "-";
+  return r.tolerance.relative ? fmt::format("{:+.3g} %", 100.0 * r.comparison->error) : fmt::format("{:+.3g}", r.comparison->error);
+}
+
+struct TableColumns {
+  std::vector<std::string> caseName, quantity, reference, computed, error, tolerance, result;
+};
+
+TableColumns tableOf(const std::vector<Row>& rows) {
+  TableColumns t;
+  for (const Row& r : rows) {
+    t.caseName.push_back(r.runLabel.empty() ? r.item : fmt::format("{} ({})", r.item, r.runLabel));
+    t.quantity.push_back(r.operation == "curve" ? r.quantity + " [curve]" : r.quantity);
+    t.reference.push_back(r.comparison ? fmt::format("{:.6g}", r.comparison->reference) : "-");
+    t.computed.push_back(r.comparison ? fmt::format("{:.6g}", r.comparison->computed) : "-");
+    t.error.push_back(formatError(r));
+    t.tolerance.push_back(formatTolerance(r.tolerance));
+    t.result.push_back(r.pass() ? "PASS" : "FAIL");
+  }
+  return t;
+}
+
+}  // namespace
+
+std::string textTable(const std::vector<Row>& rows) {
+  const TableColumns t = tableOf(rows);
+  const std::vector<std::pair<std::string, const std::vector<std::string>*>> cols = {
+      {"case", &t.caseName}, {"quantity", &t.quantity}, {"reference", &t.reference}, {"grainflow", &t.computed},
+      {"error", &t.error},   {"tolerance", &t.tolerance}, {"result", &t.result}};
+  std::vector<std::size_t> width;
+  for (const auto& [head, values] : cols) {
+    std::size_t w = head.size();
+    for (const auto& v : *values) w = std::max(w, v.size());
+    width.push_back(w);
+  }
+  std::string out;
+  for (std::size_t c = 0; c < cols.size(); ++c) out += fmt::format("{:<{}}{}", cols[c].first, width[c], c + 1 < cols.size() ? "  " : "\n");
+  for (std::size_t c = 0; c < cols.size(); ++c) out += std::string(width[c], '-') + (c + 1 < cols.size() ? "  " : "\n");
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    for (std::size_t c = 0; c < cols.size(); ++c)
+      out += fmt::format(fmt::runtime(c >= 2 && c <= 5 ? "{:>{}}{}" : "{:<{}}{}"), (*cols[c].second)[r], width[c], c + 1 < cols.size() ? "  " : "\n");
+    if (!rows[r].pass() && !rows[r].note.empty()) out += fmt::format("    ^ {}\n", rows[r].note);
+  }
+  return out;
+}
+
+namespace {
+
+std::string csvCell(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string resultsCsv(const std::vector<Row>& rows) {
+  std::string out = "item,run,quantity,operation,reference,grainflow,error,tolerance,tolerance_type,pass,note\n";
+  for (const Row& r : rows)
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", csvCell(r.item), csvCell(r.runLabel), csvCell(r.quantity), r.operation,
+                       r.comparison ? fmt::format("{:.10g}", r.comparison->reference) : "",
+                       r.comparison ? fmt::format("{:.10g}", r.comparison->computed) : "",
+                       r.comparison ? fmt::format("{:.6g}", r.comparison->error) : "", fmt::format("{:.6g}", r.tolerance.value),
+                       r.tolerance.relative ? "relative" : "absolute", r.pass() ? 1 : 0, csvCell(r.note));
+  return out;
+}
+
+namespace {
+
+std::string markdownTable(const std::vector<Row>& rows) {
+  const TableColumns t = tableOf(rows);
+  std::string out = "| case | quantity | reference | grainflow | error | tolerance | result |\n|---|---|---:|---:|---:|---:|---|\n";
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    out += fmt::format("| {} | {} | {} | {} | {} | {} | {}{} |\n", t.caseName[r], t.quantity[r], t.reference[r], t.computed[r], t.error[r],
+                       t.tolerance[r], rows[r].pass() ? "pass" : "**FAIL**", rows[r].note.empty() ? "" : " — " + rows[r].note);
+  return out;
+}
+
+std::string cpuModel() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line, model;
+  int count = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      ++count;
+      if (model.empty()) model = line.substr(line.find(':') + 2);
+    }
+  }
+  return model.empty() ? "unknown" : fmt::format("{} ({} logical CPUs)", model, count);
+}
+
+std::string summaryTable(const std::vector<Item>& items, const std::vector<std::vector<Row>>& rowsPerItem,
+                         const std::vector<ItemOutcome>& outcomes, const std::string& linkPrefix) {
+  std::string out = "| item | what is compared | comparisons | result |\n|---|---|---:|---|\n";
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    std::size_t passed = 0;
+    for (const Row& r : rowsPerItem[i]) passed += r.pass() ? 1 : 0;
+    const bool ok = passed == rowsPerItem[i].size();
+    out += fmt::format("| [`{}`]({}#{}) | {} | {}/{} | {} |\n", items[i].name, linkPrefix, items[i].name, items[i].title, passed,
+                       rowsPerItem[i].size(), ok ? "pass" : "**FAIL**");
+  }
+  return out;
+}
+
+}  // namespace
+
+void writeDocs(const std::string& docsDirectory, const std::string& repository, const std::vector<Item>& items,
+               const std::vector<std::vector<Row>>& rowsPerItem, const std::vector<ItemOutcome>& outcomes, double wall, int threads) {
+  const fs::path docs(docsDirectory), img = docs / "img";
+  fs::create_directories(img);
+  const std::time_t now = std::time(nullptr);
+  char date[64];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  const std::string commit = commandOutput(fmt::format("git -C {} rev-parse --short=12 HEAD 2>/dev/null", shellQuote(repository)));
+  const bool dirty = !commandOutput(fmt::format("git -C {} status --porcelain --untracked-files=no -- . ':!docs/validation.md' ':!docs/img' 2>/dev/null", shellQuote(repository))).empty();
+  std::string md = "# Validation report\n\n";
+  md += "<!-- Generated by `grainflow validate` (full mode, all items). Do not edit: rerun it. -->\n\n";
+  md += "Each item is data under `validation/<item>/` (format: [validation-format.md](validation-format.md)): a case file, the "
+        "reference (value or CSV with its source), the extraction from the monitor CSVs and the tolerance. Run them with "
+        "`grainflow validate` (all items, this report) or `grainflow validate --quick [NAME...]` (reduced, as in ctest).\n\n";
+  md += fmt::format("- Date: {}\n- Commit: {}{}\n- Machine: `{}`\n- CPU: {}\n- Threads: {}; total wall time {:.1f} s\n\n", date,
+                    commit.empty() ? "unknown" : "`" + commit + "`", dirty ? " (with uncommitted changes)" : "",
+                    commandOutput("uname -a"), cpuModel(), threads, wall);
+  md += "## Summary\n\n" + summaryTable(items, rowsPerItem, outcomes, "") + "\n";
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const Item& item = items[i];
+    md += fmt::format("## `{}`\n\n**{}**", item.name, item.title);
+    md += item.description.empty() ? "\n\n" : fmt::format(" — {}\n\n", item.description);
+    md += fmt::format("Case: [`validation/{0}/{1}`](../validation/{0}/{1})", item.name, fs::path(item.caseFile).filename().string());
+    if (!item.sweepKey.empty()) {
+      std::vector<std::string> values;
+      for (const RunPoint& r : item.runs) values.push_back(fmt::format("{:g}", r.x));
+      md += fmt::format("; sweep `{}` = {}", item.sweepKey, fmt::join(values, ", "));
+    }
+    md += fmt::format("; wall time {:.1f} s.\n\n", outcomes[i].wallSeconds);
+    for (const Quantity& q : item.quantities)
+      md += fmt::format("- `{}`: {} of `{}` in `{}.csv`{}; reference: {}\n", q.name, operationName(q.operation), q.column, q.monitor,
+                        q.across == AcrossRuns::LogLogSlope ? ", observed order (log-log slope over the runs)" : "", q.reference.source);
+    md += "\n" + markdownTable(rowsPerItem[i]) + "\n";
+    for (const std::string& png : outcomes[i].plots) {
+      std::error_code ec;
+      const fs::path target = img / fs::path(png).filename();
+      if (!fs::exists(png)) continue;
+      fs::copy_file(png, target, fs::copy_options::overwrite_existing, ec);
+      if (!ec) md += fmt::format("![{}](img/{})\n\n", item.name, target.filename().string());
+    }
+  }
+  io::writeFileAtomically((docs / "validation.md").string(), md);
+  std::printf("wrote %s\n", (docs / "validation.md").c_str());
+
+  // README: the summary between markers, if the README has them.
+  const fs::path readme = fs::path(repository) / "README.md";
+  const std::string begin = "<!-- validation-summary:begin -->", end = "<!-- validation-summary:end -->";
+  if (fs::exists(readme)) {
+    std::string text = io::readFile(readme.string());
+    const auto b = text.find(begin), e = text.find(end);
+    if (b != std::string::npos && e != std::string::npos && b < e) {
+      text = text.substr(0, b + begin.size()) + "\n" + summaryTable(items, rowsPerItem, outcomes, "docs/validation.md") + text.substr(e);
+      io::writeFileAtomically(readme.string(), text);
+      std::printf("updated the validation summary in %s\n", readme.c_str());
+    }
+  }
+}
+
+}  // namespace gf::app::validation

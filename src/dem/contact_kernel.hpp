@@ -1,0 +1,200 @@
+#pragma once
+// Force loops over the neighbour list and the wall contact list, compiled per contact-model
+// combination (dispatchLaws picks one instantiation per call, before the loop).
+//
+// Determinism: rows are split into one contiguous block per thread (static). A thread writes
+// forces of its own block directly; forces on partners in a later block go to the thread's own
+// buffer, added afterwards in thread order. No atomics; bit-identical for a thread count.
+#include <omp.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "dem/contact/contact_force.hpp"
+#include "dem/contact/contact_table.hpp"
+#include "dem/neighbour_list.hpp"
+#include "dem/particles.hpp"
+#include "dem/wall_contact_list.hpp"
+#include "dem/walls/wall.hpp"
+
+namespace gf::dem {
+
+template <class F>
+void dispatchLaws(NormalLaw n, RollingLaw r, CohesionLaw c, F&& f) {
+  auto withCohesion = [&]<NormalLaw N, RollingLaw R>() {
+    if (c == CohesionLaw::SimplifiedJkr) f.template operator()<N, R, CohesionLaw::SimplifiedJkr>();
+    else f.template operator()<N, R, CohesionLaw::None>();
+  };
+  auto withRolling = [&]<NormalLaw N>() {
+    if (r == RollingLaw::ConstantTorque) withCohesion.template operator()<N, RollingLaw::ConstantTorque>();
+    else if (r == RollingLaw::Epsd) withCohesion.template operator()<N, RollingLaw::Epsd>();
+    else withCohesion.template operator()<N, RollingLaw::None>();
+  };
+  if (n == NormalLaw::Hooke) withRolling.template operator()<NormalLaw::Hooke>();
+  else withRolling.template operator()<NormalLaw::HertzMindlin>();
+}
+
+/// Per-thread partner force buffers (threads 0..T-2).
+struct PartnerBuffers {
+  std::vector<std::vector<Vec3>> force, torque;
+  std::vector<std::uint32_t> lo, hi;  // touched range per thread
+  void prepare(int threads, std::size_t n) {
+    const std::size_t t = threads > 1 ? threads - 1 : 0;
+    force.resize(t);
+    torque.resize(t);
+    lo.assign(t, static_cast<std::uint32_t>(n));
+    hi.assign(t, 0);
+    for (std::size_t k = 0; k < t; ++k) {
+      if (force[k].size() != n) {
+        force[k].assign(n, Vec3{});
+        torque[k].assign(n, Vec3{});
+      }
+    }
+  }
+};
+
+/// Sets force = body forces, then adds all particle-particle contact forces.
+template <NormalLaw N, RollingLaw R, CohesionLaw C>
+void particleContactForces(ParticleSet& p, NeighbourList& list, const ContactTable& table, const PeriodicBox& box,
+                           const Vec3& gravity, double dt, PartnerBuffers& buffers) {
+  const std::size_t n = p.size();
+  const int threads = omp_get_max_threads();
+  buffers.prepare(threads, n);
+  const int types = table.count();
+  const PairCoefficients* coefficients = table.data();
+  Vec3* force = p.force.data();
+  Vec3* torque = p.torque.data();
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    const int team = omp_get_num_threads();
+    const std::size_t begin = n * t / team, end = n * (t + 1) / team;
+    Vec3* bufferForce = t < team - 1 ? buffers.force[t].data() : nullptr;
+    Vec3* bufferTorque = t < team - 1 ? buffers.torque[t].data() : nullptr;
+    std::uint32_t touchedLo = static_cast<std::uint32_t>(n), touchedHi = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      force[i] = p.mass[i] * gravity + p.externalForce[i];
+      torque[i] = p.externalTorque[i];
+    }
+    for (std::size_t i = begin; i < end; ++i) {
+      const Vec3 xi = p.position[i], vi = p.velocity[i], wi = p.angularVelocity[i];
+      const double ri = p.radius[i], mi = p.mass[i];
+      const int ti = p.type[i];
+      Vec3 fi{}, tqi{};
+      for (std::uint32_t k = list.rowStart[i]; k < list.rowStart[i + 1]; ++k) {
+        const std::uint32_t j = list.partner[k];
+        const Vec3 d = box.minimumImage(xi - p.position[j]);
+        const double rj = p.radius[j];
+        const double dist2 = normSquared(d);
+        const double rsum = ri + rj;
+        if (dist2 >= rsum * rsum) {
+          list.tangentialHistory[k] = Vec3{};
+          if constexpr (R == RollingLaw::Epsd) list.rollingHistory[k] = Vec3{};
+          continue;
+        }
+        const double dist = std::sqrt(dist2);
+        ContactGeometry g;
+        g.normal = d / dist;
+        g.overlap = rsum - dist;
+        const Vec3 wj = p.angularVelocity[j];
+        g.relativeVelocity = vi - p.velocity[j] - cross(ri * wi + rj * wj, g.normal);
+        g.relativeAngularVelocity = wi - wj;
+        g.effectiveRadius = ri * rj / rsum;
+        const double mj = p.mass[j];
+        g.effectiveMass = mi * mj / (mi + mj);
+        if constexpr (R == RollingLaw::Epsd)
+          g.rollingInertia = 1.0 / (1.0 / (1.4 * mi * ri * ri) + 1.0 / (1.4 * mj * rj * rj));
+        const ContactResult c = contactForce<N, R, C>(coefficients[ti * types + p.type[j]], g,
+                                                      list.tangentialHistory[k],
+                                                      R == RollingLaw::Epsd ? &list.rollingHistory[k] : nullptr, dt);
+        // Torque of the tangential force: -R n x F_t on both (contact point -R_i n from i, +R_j n from j).
+        const Vec3 nxf = cross(g.normal, c.tangential);
+        fi += c.force;
+        tqi += c.rollingTorque - ri * nxf;
+        const Vec3 tqj = -rj * nxf - c.rollingTorque;
+        if (j < end) {
+          force[j] -= c.force;
+          torque[j] += tqj;
+        } else {
+          bufferForce[j] -= c.force;
+          bufferTorque[j] += tqj;
+          touchedLo = std::min(touchedLo, j);
+          touchedHi = std::max(touchedHi, j + 1);
+        }
+      }
+      force[i] += fi;
+      torque[i] += tqi;
+    }
+    if (t < team - 1) {
+      buffers.lo[t] = touchedLo;
+      buffers.hi[t] = touchedHi;
+    }
+#pragma omp barrier
+    // Add the partner buffers in thread order, each thread over its own block.
+    for (int s = 0; s < team - 1; ++s) {
+      const std::size_t from = std::max<std::size_t>(begin, buffers.lo[s]);
+      const std::size_t to = std::min<std::size_t>(end, buffers.hi[s]);
+      for (std::size_t i = from; i < to; ++i) {
+        force[i] += buffers.force[s][i];
+        torque[i] += buffers.torque[s][i];
+        buffers.force[s][i] = Vec3{};
+        buffers.torque[s][i] = Vec3{};
+      }
+    }
+  }
+}
+
+/// Current state of the walls, as the contact loop sees it.
+struct WallState {
+  const std::vector<WallPrimitive>* primitives;
+  const std::vector<int>* material;    // per wall
+  const std::vector<Vec3>* velocity;   // per wall, translation
+  const std::vector<Vec3>* angularVelocity;
+  const std::vector<Vec3>* centre;     // per wall, current
+};
+
+/// Adds particle-wall contact forces (parallel over particles; each touches only its own row).
+template <NormalLaw N, RollingLaw R, CohesionLaw C>
+void wallContactForces(ParticleSet& p, WallContactList& list, const ContactTable& table, const WallState& walls,
+                       double dt) {
+  const int types = table.count();
+  const PairCoefficients* coefficients = table.data();
+  parallelFor(static_cast<std::int64_t>(p.size()), [&](std::int64_t i) {
+    const std::uint32_t first = list.rowStart[i], last = list.rowStart[i + 1];
+    if (first == last) return;
+    const Vec3 xi = p.position[i], vi = p.velocity[i], wi = p.angularVelocity[i];
+    const double ri = p.radius[i], mi = p.mass[i];
+    for (std::uint32_t k = first; k < last; ++k) {
+      const WallPrimitive& prim = (*walls.primitives)[list.primitive[k]];
+      const WallDistance wd = prim.active ? distanceToPrimitive(prim, xi) : WallDistance{1e300, {}};
+      if (wd.distance >= ri) {
+        list.tangentialHistory[k] = Vec3{};
+        if constexpr (R == RollingLaw::Epsd) list.rollingHistory[k] = Vec3{};
+        list.force[k] = Vec3{};
+        continue;
+      }
+      const int w = prim.wall;
+      const Vec3 contactPoint = xi - wd.distance * wd.normal;
+      const Vec3 ww = (*walls.angularVelocity)[w];
+      const Vec3 wallVelocity = (*walls.velocity)[w] + cross(ww, contactPoint - (*walls.centre)[w]);
+      ContactGeometry g;
+      g.normal = wd.normal;
+      g.overlap = ri - wd.distance;
+      g.relativeVelocity = vi - ri * cross(wi, g.normal) - wallVelocity;
+      g.relativeAngularVelocity = wi - ww;
+      g.effectiveRadius = ri;
+      g.effectiveMass = mi;
+      if constexpr (R == RollingLaw::Epsd) g.rollingInertia = 1.4 * mi * ri * ri;
+      const ContactResult c = contactForce<N, R, C>(coefficients[p.type[i] * types + (*walls.material)[w]], g,
+                                                    list.tangentialHistory[k],
+                                                    R == RollingLaw::Epsd ? &list.rollingHistory[k] : nullptr, dt);
+      p.force[i] += c.force;
+      p.torque[i] += c.rollingTorque - ri * cross(g.normal, c.tangential);
+      list.force[k] = c.force;
+      list.point[k] = contactPoint;
+    }
+  });
+}
+
+}  // namespace gf::dem

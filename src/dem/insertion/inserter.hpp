@@ -1,0 +1,64 @@
+#pragma once
+// Particle insertion methods (by name: lattice, random_packing, rate, csv_file), one file each.
+// insert() is called once at start-up (time 0, dt 0) and then every step; one-shot methods
+// insert at the first call, rate-based ones over their time window.
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "core/domain.hpp"
+#include "core/params.hpp"
+#include "core/registry.hpp"
+#include "core/serialize.hpp"
+#include "dem/contact/contact_table.hpp"
+#include "dem/insertion/size_distribution.hpp"
+#include "dem/particles.hpp"
+#include "dem/random.hpp"
+
+namespace gf::dem {
+
+struct InsertionContext {
+  ParticleSet& particles;
+  std::int64_t& nextId;
+  const Domain& domain;
+};
+
+class Inserter {
+ public:
+  virtual ~Inserter() = default;
+  /// Inserts the particles due in (time, time + dt]; returns how many.
+  virtual std::size_t insert(InsertionContext& ctx, double time, double dt) = 0;
+  virtual void save(BinaryWriter& out) const = 0;
+  virtual void load(BinaryReader& in) = 0;
+};
+
+/// Keys every insertion method shares: material, size distribution, initial velocity, seed.
+struct InsertionCommon {
+  int material = 0;
+  double density = 2500.0;
+  std::unique_ptr<SizeDistribution> size;
+  Vec3 velocity;
+  Random rng;
+  /// Set by the System before constructing inserters (the registry passes only Params).
+  static const ContactTable*& table();
+  explicit InsertionCommon(Params& p);
+};
+
+/// Uniform grid of spheres for overlap checks during insertion.
+class OverlapGrid {
+ public:
+  explicit OverlapGrid(double cellSize) : h_(cellSize) {}
+  void add(const Vec3& x, double r);
+  /// True if a sphere at x with radius r overlaps any stored sphere.
+  bool overlaps(const Vec3& x, double r) const;
+
+ private:
+  std::int64_t key(int i, int j, int k) const {
+    return (static_cast<std::int64_t>(i) * 2000003 + j) * 2000003 + k;
+  }
+  double h_;
+  std::unordered_map<std::int64_t, std::vector<std::pair<Vec3, double>>> cells_;
+};
+
+}  // namespace gf::dem

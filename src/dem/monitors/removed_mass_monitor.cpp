@@ -1,0 +1,25 @@
+// Mass and number of particles removed by the outlets (deletion regions).
+#include "core/monitor.hpp"
+#include "dem/system.hpp"
+
+namespace gf::dem {
+namespace {
+class RemovedMassMonitor final : public Monitor {
+ public:
+  explicit RemovedMassMonitor(Params&) {}
+  std::vector<MonitorColumn> columns() const override { return {{"removed_mass", "kg"}, {"removed_particles", "-"}}; }
+  std::vector<double> sample(const RunState& s) override {
+    double mass = 0.0, count = 0.0;
+    if (s.dem)
+      for (const Outlet& o : s.dem->outlets()) {
+        mass += o.removedMass;
+        count += double(o.removedCount);
+      }
+    return {mass, count};
+  }
+};
+}  // namespace
+}  // namespace gf::dem
+
+GF_REGISTER_MODEL(gf::Monitor, gf::dem::RemovedMassMonitor, "removed_mass",
+                  "cumulative mass and number of particles removed by all outlets")

@@ -1,0 +1,187 @@
+#include "dem/neighbour_list.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.hpp"
+
+namespace gf::dem {
+
+int CellGrid::cellIndex(const Vec3& x, int c[3]) const {
+  for (int a = 0; a < 3; ++a) {
+    const int k = static_cast<int>(std::floor((x[a] - origin[a]) / width[a]));
+    c[a] = std::clamp(k, 0, dims[a] - 1);  // particles slightly outside go to the boundary cells
+  }
+  return (c[2] * dims[1] + c[1]) * dims[0] + c[0];
+}
+
+void CellGrid::build(const std::vector<Vec3>& x, const Vec3& boxMin, const Vec3& boxMax, double minCellSize) {
+  const std::size_t n = x.size();
+  const Vec3 size = boxMax - boxMin;
+  // Cells at least the interaction range wide; coarser if the box would need far more cells
+  // than particles (sparse systems).
+  double h = minCellSize > 0.0 ? minCellSize : std::max({size.x, size.y, size.z});
+  const double maxCells = 8.0 * static_cast<double>(n) + 4096.0;
+  while (std::max(1.0, std::floor(size.x / h)) * std::max(1.0, std::floor(size.y / h)) *
+             std::max(1.0, std::floor(size.z / h)) > maxCells)
+    h *= 1.26;
+  origin = boxMin;
+  for (int a = 0; a < 3; ++a) {
+    dims[a] = std::max(1, static_cast<int>(std::floor(size[a] / h)));
+    width[a] = size[a] / dims[a];  // >= h; the cells tile the box exactly (periodic wrap)
+  }
+  cellStart.assign(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] + 1, 0);
+  cellOf.resize(n);
+  parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+    int c[3];
+    cellOf[i] = static_cast<std::uint32_t>(cellIndex(x[i], c));
+  });
+  for (std::size_t i = 0; i < n; ++i) ++cellStart[cellOf[i] + 1];
+  for (std::size_t c = 1; c < cellStart.size(); ++c) cellStart[c] += cellStart[c - 1];
+  sorted.resize(n);
+  std::vector<std::uint32_t> fill(cellStart.begin(), cellStart.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) sorted[fill[cellOf[i]]++] = static_cast<std::uint32_t>(i);
+}
+
+namespace {
+
+std::uint64_t spreadBits(std::uint64_t v) {  // 21 bits -> every third bit
+  v &= 0x1fffff;
+  v = (v | v << 32) & 0x1f00000000ffffULL;
+  v = (v | v << 16) & 0x1f0000ff0000ffULL;
+  v = (v | v << 8) & 0x100f00f00f00f00fULL;
+  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+  v = (v | v << 2) & 0x1249249249249249ULL;
+  return v;
+}
+
+/// Neighbour cell offsets along one axis: -1, 0, +1, wrapped if periodic, without repeats.
+int neighbourCells(int c, int dim, bool periodic, int out[3]) {
+  int count = 0;
+  for (int d = -1; d <= 1; ++d) {
+    int k = c + d;
+    if (periodic) k = (k + dim) % dim;
+    else if (k < 0 || k >= dim) continue;
+    bool seen = false;
+    for (int q = 0; q < count; ++q) seen |= out[q] == k;
+    if (!seen) out[count++] = k;
+  }
+  return count;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> mortonOrder(const std::vector<Vec3>& x, const Vec3& boxMin, const Vec3& boxMax,
+                                       double cellSize) {
+  const std::size_t n = x.size();
+  std::vector<std::uint64_t> key(n);
+  parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+    std::uint64_t k = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double q = std::floor((x[i][a] - boxMin[a]) / cellSize);
+      const std::uint64_t c = static_cast<std::uint64_t>(std::clamp(q, 0.0, 2097151.0));
+      k |= spreadBits(c) << a;
+    }
+    key[i] = k;
+  });
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
+  return order;
+}
+
+void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Vec3& boxMin, const Vec3& boxMax,
+                          double skin, const std::vector<std::int64_t>& previousIndex, bool withRollingHistory) {
+  const std::size_t n = p.size();
+  double maxRadius = 0.0;
+  for (double r : p.radius) maxRadius = std::max(maxRadius, r);
+  CellGrid grid;
+  grid.build(p.position, boxMin, boxMax, 2.0 * maxRadius + skin);
+
+  // Visits the partners j > i within the cut-off, in a fixed order (cells, then index).
+  auto forEachPartner = [&](std::size_t i, auto&& visit) {
+    int c[3];
+    grid.cellIndex(p.position[i], c);
+    int nx[3], ny[3], nz[3];
+    const int cx = neighbourCells(c[0], grid.dims[0], box.periodic[0], nx);
+    const int cy = neighbourCells(c[1], grid.dims[1], box.periodic[1], ny);
+    const int cz = neighbourCells(c[2], grid.dims[2], box.periodic[2], nz);
+    const Vec3 xi = p.position[i];
+    const double ri = p.radius[i] + skin;
+    for (int a = 0; a < cz; ++a)
+      for (int b = 0; b < cy; ++b)
+        for (int d = 0; d < cx; ++d) {
+          const int cell = (nz[a] * grid.dims[1] + ny[b]) * grid.dims[0] + nx[d];
+          for (std::uint32_t s = grid.cellStart[cell]; s < grid.cellStart[cell + 1]; ++s) {
+            const std::uint32_t j = grid.sorted[s];
+            if (j <= i) continue;
+            const Vec3 dx = box.minimumImage(xi - p.position[j]);
+            const double cut = ri + p.radius[j];
+            if (normSquared(dx) < cut * cut) visit(j);
+          }
+        }
+  };
+
+  std::vector<std::uint32_t> count(n + 1, 0);
+  parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+    std::uint32_t k = 0;
+    forEachPartner(static_cast<std::size_t>(i), [&](std::uint32_t) { ++k; });
+    count[i + 1] = k;
+  });
+  for (std::size_t i = 0; i < n; ++i) count[i + 1] += count[i];
+
+  std::vector<std::uint32_t> oldStart = std::move(rowStart);
+  std::vector<std::uint32_t> oldPartner = std::move(partner);
+  std::vector<Vec3> oldTangential = std::move(tangentialHistory);
+  std::vector<Vec3> oldRolling = std::move(rollingHistory);
+  rowStart = std::move(count);
+  partner.assign(rowStart[n], 0);
+  tangentialHistory.assign(rowStart[n], Vec3{});
+  if (withRollingHistory) rollingHistory.assign(rowStart[n], Vec3{});
+  const bool carryRolling = withRollingHistory && oldRolling.size() == oldPartner.size();
+  const std::int64_t oldRows = oldStart.empty() ? 0 : static_cast<std::int64_t>(oldStart.size()) - 1;
+
+  parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+    std::uint32_t k = rowStart[i];
+    const std::int64_t oi = i < static_cast<std::int64_t>(previousIndex.size()) ? previousIndex[i] : -1;
+    forEachPartner(static_cast<std::size_t>(i), [&](std::uint32_t j) {
+      partner[k] = j;
+      const std::int64_t oj = j < previousIndex.size() ? previousIndex[j] : -1;
+      if (oi >= 0 && oj >= 0 && oi < oldRows && oj < oldRows) {
+        const std::int64_t owner = std::min(oi, oj), other = std::max(oi, oj);
+        for (std::uint32_t q = oldStart[owner]; q < oldStart[owner + 1]; ++q)
+          if (oldPartner[q] == static_cast<std::uint32_t>(other)) {
+            const double sign = oi < oj ? 1.0 : -1.0;
+            tangentialHistory[k] = sign * oldTangential[q];
+            if (carryRolling) rollingHistory[k] = sign * oldRolling[q];
+            break;
+          }
+      }
+      ++k;
+    });
+  });
+}
+
+std::size_t NeighbourList::memoryBytes() const {
+  return rowStart.capacity() * sizeof(std::uint32_t) + partner.capacity() * sizeof(std::uint32_t) +
+         tangentialHistory.capacity() * sizeof(Vec3) + rollingHistory.capacity() * sizeof(Vec3);
+}
+
+void NeighbourList::save(BinaryWriter& out) const {
+  out.putVector(rowStart);
+  out.putVector(partner);
+  out.putVector(tangentialHistory);
+  out.putVector(rollingHistory);
+}
+
+void NeighbourList::load(BinaryReader& in) {
+  rowStart = in.getVector<std::uint32_t>();
+  partner = in.getVector<std::uint32_t>();
+  tangentialHistory = in.getVector<Vec3>();
+  rollingHistory = in.getVector<Vec3>();
+  if (tangentialHistory.size() != partner.size() || (!rowStart.empty() && rowStart.back() != partner.size()))
+    throw CheckpointError("checkpoint is corrupt: DEM neighbour list arrays do not match");
+}
+
+}  // namespace gf::dem

@@ -1,0 +1,208 @@
+// Neighbour search, contact history across rebuilds/reordering, determinism, restarts, energy.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <numbers>
+#include <set>
+
+#include "core/parallel.hpp"
+#include "dem/neighbour_list.hpp"
+#include "dem_test_util.hpp"
+
+namespace gf::dem {
+namespace {
+
+using test::DemCase;
+using test::materialsYaml;
+
+ParticleSet randomParticles(std::size_t n, const Vec3& size, std::uint64_t seed) {
+  ParticleSet p;
+  Random rng(seed);
+  for (std::size_t i = 0; i < n; ++i)
+    p.add(static_cast<std::int64_t>(i), 0, rng.uniform(0.0008, 0.0012), 2500,
+          {rng.uniform(0, size.x), rng.uniform(0, size.y), rng.uniform(0, size.z)});
+  return p;
+}
+
+std::set<std::pair<std::int64_t, std::int64_t>> listPairs(const NeighbourList& list, const ParticleSet& p) {
+  std::set<std::pair<std::int64_t, std::int64_t>> out;
+  for (std::size_t i = 0; i < list.rows(); ++i)
+    for (std::uint32_t k = list.rowStart[i]; k < list.rowStart[i + 1]; ++k) {
+      const std::int64_t a = p.id[i], b = p.id[list.partner[k]];
+      out.insert({std::min(a, b), std::max(a, b)});
+    }
+  return out;
+}
+
+TEST(DemNeighbourList, MatchesBruteForceWithPeriodicBoundaries) {
+  for (bool periodic : {false, true}) {
+    Domain d;
+    d.min = {0, 0, 0};
+    d.max = {0.012, 0.01, 0.02};
+    d.periodic = {periodic, false, periodic};
+    const PeriodicBox box(d);
+    const ParticleSet p = randomParticles(600, d.max, 7);
+    const double skin = 0.0003;
+    NeighbourList list;
+    list.build(p, box, d.min, d.max, skin, {}, false);
+    std::set<std::pair<std::int64_t, std::int64_t>> expected;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      for (std::size_t j = i + 1; j < p.size(); ++j) {
+        const double cut = p.radius[i] + p.radius[j] + skin;
+        if (normSquared(box.minimumImage(p.position[i] - p.position[j])) < cut * cut) expected.insert({i, j});
+      }
+    EXPECT_EQ(listPairs(list, p), expected) << "periodic=" << periodic;
+    EXPECT_GT(expected.size(), 100u);
+  }
+}
+
+TEST(DemNeighbourList, HistorySurvivesReorderingRemovalAndInsertion) {
+  Domain d;
+  d.min = {0, 0, 0};
+  d.max = {0.01, 0.01, 0.01};
+  const PeriodicBox box(d);
+  ParticleSet p = randomParticles(300, d.max, 3);
+  NeighbourList list;
+  list.build(p, box, d.min, d.max, 0.0005, {}, true);
+  // History value encodes the ordered pair of ids: i's view of (id_i, id_j).
+  auto code = [](std::int64_t a, std::int64_t b) { return Vec3{double(a), double(b), double(a - b)}; };
+  for (std::size_t i = 0; i < list.rows(); ++i)
+    for (std::uint32_t k = list.rowStart[i]; k < list.rowStart[i + 1]; ++k) {
+      list.tangentialHistory[k] = code(p.id[i], p.id[list.partner[k]]);
+      list.rollingHistory[k] = 2.0 * list.tangentialHistory[k];
+    }
+  // Morton order, drop every 7th particle, append 5 new ones.
+  std::vector<std::uint32_t> order = mortonOrder(p.position, d.min, d.max, 0.002);
+  std::erase_if(order, [](std::uint32_t i) { return i % 7 == 0; });
+  const std::size_t listed = p.size();
+  p.gather(order);
+  for (int k = 0; k < 5; ++k) p.add(1000 + k, 0, 0.001, 2500, {0.001 * k + 0.002, 0.005, 0.005});
+  std::vector<std::int64_t> previous(p.size(), -1);
+  for (std::size_t k = 0; k < order.size(); ++k) previous[k] = order[k] < listed ? order[k] : -1;
+  list.build(p, box, d.min, d.max, 0.0005, previous, true);
+  std::size_t carried = 0;
+  for (std::size_t i = 0; i < list.rows(); ++i)
+    for (std::uint32_t k = list.rowStart[i]; k < list.rowStart[i + 1]; ++k) {
+      const std::int64_t a = p.id[i], b = p.id[list.partner[k]];
+      if (a >= 1000 || b >= 1000) {
+        EXPECT_EQ(list.tangentialHistory[k], Vec3{});
+        continue;
+      }
+      // i's view of (a, b): the stored code of (a, b), or minus the code of (b, a).
+      const Vec3 h = list.tangentialHistory[k];
+      const bool ok = h == code(a, b) || h == -code(b, a);
+      EXPECT_TRUE(ok) << a << " " << b;
+      EXPECT_EQ(list.rollingHistory[k], 2.0 * h);
+      ++carried;
+    }
+  EXPECT_GT(carried, 100u);
+}
+
+std::string bedCase(int threads, const std::string& extraContact = "") {
+  return materialsYaml("hertz_mindlin", 0.5, 0.5, 1e7, 0.3, extraContact) + R"(
+domain: {min: [0, 0, 0], max: [0.012, 0.012, 0.03], periodic: [1, 0, 0]}
+walls:
+  - {type: plane, name: floor, point: [0, 0, 0], normal: [0, 0, 1]}
+  - {type: plane, point: [0, 0, 0], normal: [0, 1, 0]}
+  - {type: plane, point: [0, 0.012, 0], normal: [0, -1, 0]}
+insertion:
+  - type: random_packing
+    min: [0, 0, 0.001]
+    max: [0.012, 0.012, 0.029]
+    count: 300
+    seed: 5
+    size: {distribution: log_normal, median_diameter: 0.0015, sigma: 0.15}
+    velocity: [0.1, 0, -0.2]
+neighbour_search: {reorder_interval: 2}
+)";
+}
+
+std::vector<char> snapshot(const System& s) {
+  BinaryWriter w;
+  s.save(w);
+  return w.bytes();
+}
+
+TEST(DemSystem, SameInputSameThreadsGivesBitIdenticalState) {
+  const std::string yaml = bedCase(2, "  rolling: epsd\n  rolling_friction: 0.1\n  cohesion: simplified_jkr\n"
+                                      "  cohesion_energy_density: 1000");
+  for (int threads : {1, 2}) {
+    setThreadCount(threads);
+    DemCase a(yaml, {0, 0, -9.81}), b(yaml, {0, 0, -9.81});
+    for (int s = 0; s < 600; ++s) {
+      a->step(2e-5);
+      b->step(2e-5);
+    }
+    EXPECT_GT(a->rebuilds(), 3);
+    EXPECT_EQ(snapshot(*a), snapshot(*b)) << threads << " threads";
+  }
+  setThreadCount(1);
+}
+
+TEST(DemSystem, RestartContinuesBitIdentically) {
+  const std::string yaml = bedCase(1, "  rolling: epsd\n  rolling_friction: 0.1");
+  DemCase continuous(yaml, {0, 0, -9.81});
+  for (int s = 0; s < 700; ++s) continuous->step(2e-5);
+  const std::vector<char> saved = snapshot(*continuous);
+  for (int s = 0; s < 700; ++s) continuous->step(2e-5);
+
+  DemCase restarted(yaml, {0, 0, -9.81});
+  BinaryReader reader(saved.data(), saved.size());
+  restarted->load(reader);
+  EXPECT_TRUE(reader.atEnd());
+  for (int s = 0; s < 700; ++s) restarted->step(2e-5);
+  EXPECT_EQ(snapshot(*restarted), snapshot(*continuous));
+}
+
+// Elastic (e = 1), frictionless particles in a closed box: velocity Verlet conserves the total
+// energy (kinetic + elastic Hertz potential 2/5 k d^(5/2)) to 0.1 % over 1e5 steps.
+TEST(DemSystem, ElasticBoxConservesEnergy) {
+  const std::string yaml = materialsYaml("hertz_mindlin", 1.0, 0.0) + R"(
+domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}
+walls:
+  - {type: box, min: [0, 0, 0], max: [0.01, 0.01, 0.01]}
+insertion:
+  - {type: random_packing, min: [0, 0, 0], max: [0.01, 0.01, 0.01], count: 40, seed: 2,
+     size: {diameter: 0.002}}
+)";
+  DemCase c(yaml, {0, 0, 0});
+  Random rng(11);
+  for (Vec3& v : c->particles().velocity) v = {rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5)};
+  c->refresh();
+  const double e0 = c->energy().total();
+  double maxDeviation = 0.0;
+  const double dt = 0.02 * c->rayleighTime();
+  for (int s = 0; s < 100000; ++s) {
+    c->step(dt);
+    if (s % 100 == 0) maxDeviation = std::max(maxDeviation, std::abs(c->energy().total() - e0));
+  }
+  EXPECT_LT(maxDeviation, 1e-3 * e0);
+  EXPECT_GT(c->contactStatistics().particleContacts + c->steps(), 0);
+}
+
+TEST(DemSystem, TimeStepCheckAgainstRayleighTime) {
+  const double tR = rayleighTime(0.001, 2500, 1e7, 0.3);
+  // t_R = pi r sqrt(rho/G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu)) (Li et al. 2005).
+  EXPECT_NEAR(tR, std::numbers::pi * 0.001 * std::sqrt(2500 / (1e7 / 2.6)) / (0.1631 * 0.3 + 0.8766), 1e-15);
+  EXPECT_EQ(checkTimeStep(0.1 * tR, tR).verdict, TimeStepVerdict::Ok);
+  EXPECT_EQ(checkTimeStep(0.3 * tR, tR).verdict, TimeStepVerdict::Warning);
+  EXPECT_EQ(checkTimeStep(0.6 * tR, tR).verdict, TimeStepVerdict::Error);
+  EXPECT_NE(checkTimeStep(0.6 * tR, tR).message.find("Rayleigh"), std::string::npos);
+}
+
+TEST(DemSystem, HealthCheckNamesParticle) {
+  DemCase c(materialsYaml("hertz_mindlin", 0.5, 0.5) + "domain: {min: [0, 0, 0], max: [1, 1, 1]}\n", {0, 0, 0});
+  c->particles().add(42, 0, 0.001, 2500, {0.5, 0.5, 0.5}, {0, 0, 100});
+  c->refresh();
+  for (int s = 0; s < 200; ++s) c->step(0.001);
+  try {
+    c->checkHealth(200, 0.2);
+    FAIL() << "expected DivergenceError";
+  } catch (const DivergenceError& e) {
+    EXPECT_NE(std::string(e.what()).find("42"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace gf::dem

@@ -1,0 +1,162 @@
+// Wall geometry and motion: STL (ASCII and binary), cylinders (inside/outside), cones, moving
+// and rotating walls, wall loads.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "dem/walls/stl_reader.hpp"
+#include "dem/walls/wall_primitive.hpp"
+#include "dem_test_util.hpp"
+
+namespace gf::dem {
+namespace {
+
+using test::DemCase;
+using test::materialsYaml;
+
+const std::filesystem::path kTmp = std::filesystem::temp_directory_path() / "grainflow_dem_walls_test";
+
+// Square [-L, L]^2 at z = 0 as two triangles.
+void writeStl(const std::filesystem::path& path, bool binary, double L) {
+  const float v[2][3][3] = {{{-float(L), -float(L), 0}, {float(L), -float(L), 0}, {float(L), float(L), 0}},
+                            {{-float(L), -float(L), 0}, {float(L), float(L), 0}, {-float(L), float(L), 0}}};
+  std::ofstream out(path, std::ios::binary);
+  if (binary) {
+    char header[80] = {};
+    out.write(header, 80);
+    const std::uint32_t n = 2;
+    out.write(reinterpret_cast<const char*>(&n), 4);
+    for (const auto& t : v) {
+      const float normal[3] = {0, 0, 1};
+      out.write(reinterpret_cast<const char*>(normal), 12);
+      out.write(reinterpret_cast<const char*>(t), 36);
+      const std::uint16_t attr = 0;
+      out.write(reinterpret_cast<const char*>(&attr), 2);
+    }
+  } else {
+    out << "solid square\n";
+    for (const auto& t : v) {
+      out << " facet normal 0 0 1\n  outer loop\n";
+      for (const auto& p : t) out << "   vertex " << p[0] << " " << p[1] << " " << p[2] << "\n";
+      out << "  endloop\n endfacet\n";
+    }
+    out << "endsolid square\n";
+  }
+}
+
+TEST(DemWalls, StlAsciiAndBinaryReadTheSameTriangles) {
+  std::filesystem::create_directories(kTmp);
+  writeStl(kTmp / "a.stl", false, 0.01);
+  writeStl(kTmp / "b.stl", true, 0.01);
+  const auto a = readStl((kTmp / "a.stl").string()), b = readStl((kTmp / "b.stl").string());
+  ASSERT_EQ(a.size(), 2u);
+  ASSERT_EQ(b.size(), 2u);
+  for (int t = 0; t < 2; ++t)
+    for (int v = 0; v < 3; ++v) EXPECT_LT(norm(a[t][v] - b[t][v]), 1e-9);  // binary holds floats
+  EXPECT_THROW(readStl((kTmp / "missing.stl").string()), Error);
+}
+
+TEST(DemWalls, DistanceToPrimitivesIsExact) {
+  WallPrimitive tri;
+  tri.kind = PrimitiveKind::Triangle;
+  tri.a = {0, 0, 0};
+  tri.b = {1, 0, 0};
+  tri.c = {0, 1, 0};
+  EXPECT_DOUBLE_EQ(distanceToPrimitive(tri, {0.2, 0.2, 0.5}).distance, 0.5);  // face
+  EXPECT_DOUBLE_EQ(distanceToPrimitive(tri, {2, 0, 0}).distance, 1.0);        // vertex b
+  EXPECT_NEAR(distanceToPrimitive(tri, {1, 1, 0}).distance, std::sqrt(0.5), 1e-15);  // edge bc
+  WallPrimitive cone;
+  cone.kind = PrimitiveKind::Axisymmetric;
+  cone.a = {0, 0, 0};
+  cone.b = {0, 0, 1};
+  cone.r0 = 0.0;
+  cone.r1 = 1.0;
+  cone.length = 1.0;  // 45 degree cone
+  const WallDistance d = distanceToPrimitive(cone, {0, 0, 0.5});  // on the axis
+  EXPECT_NEAR(d.distance, 0.5 / std::sqrt(2.0), 1e-12);
+  const WallDistance out = distanceToPrimitive(cone, {1, 0, 0.5});  // outside
+  EXPECT_NEAR(out.distance, 0.5 / std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(out.normal.x, 1 / std::sqrt(2.0), 1e-12);
+}
+
+double bounceOn(const std::string& walls, const Vec3& start, const Vec3& v, Vec3* after = nullptr) {
+  std::filesystem::create_directories(kTmp);
+  const std::string yaml = materialsYaml("hertz_mindlin", 0.8, 0.0) +
+                           "domain: {min: [-0.05, -0.05, -0.05], max: [0.05, 0.05, 0.05]}\nwalls:\n" + walls;
+  Params params = Params::loadString(yaml, (kTmp / "case.yaml").string());
+  const Domain domain = Domain::read(params);
+  System s(params, domain, {0, 0, 0});
+  s.particles().add(0, 0, 0.001, 2500, start, v);
+  s.refresh();
+  const double speed = norm(v);
+  for (int k = 0; k < 20000; ++k) s.step(2e-7);
+  if (after) *after = s.particles().velocity[0];
+  return dot(s.particles().velocity[0], v) / (-speed * speed);
+}
+
+TEST(DemWalls, StlPlaneCylinderAndConeReflectWithRestitution) {
+  writeStl(kTmp / "square.stl", true, 0.02);
+  const double ascii = bounceOn("  - {type: stl, file: square.stl}\n", {0.001, 0.002, 0.0012}, {0, 0, -0.5});
+  EXPECT_NEAR(ascii, 0.8, 0.01 * 0.8);
+  // Inside a cylinder of radius 0.01 (drum), moving radially outwards.
+  const double inner = bounceOn("  - {type: cylinder, base: [0, 0, -0.01], axis: [0, 0, 0.02], radius: 0.01}\n",
+                                {0.0088, 0, 0}, {0.5, 0, 0});
+  EXPECT_NEAR(inner, 0.8, 0.01 * 0.8);
+  // Outside the same cylinder (obstacle), moving radially inwards.
+  const double outer = bounceOn("  - {type: cylinder, base: [0, 0, -0.01], axis: [0, 0, 0.02], radius: 0.01}\n",
+                                {0.0112, 0, 0}, {-0.5, 0, 0});
+  EXPECT_NEAR(outer, 0.8, 0.01 * 0.8);
+  // Inside a 45-degree cone, hitting the mantle along its normal.
+  Vec3 after;
+  const double r = 0.01, z = 0.01;  // point on the mantle: rho = z
+  const Vec3 n = Vec3{-1, 0, 1} / std::sqrt(2.0);  // inward normal at (r, 0, z)
+  const Vec3 start = Vec3{r, 0, z} + 0.00101 * n;
+  const double cone = bounceOn("  - {type: cone, base: [0, 0, 0], axis: [0, 0, 0.03], radius_base: 0, radius_top: 0.03}\n",
+                               start, -0.5 * n, &after);
+  EXPECT_NEAR(cone, 0.8, 0.01 * 0.8);
+}
+
+// A piston (plane) moving at V into an elastic particle at rest: after the collision the particle
+// moves at 2V (elastic reflection in the wall frame).
+TEST(DemWalls, MovingPistonReflectsInWallFrame) {
+  const std::string yaml = materialsYaml("hertz_mindlin", 1.0, 0.0) + R"(
+domain: {min: [-0.05, -0.05, -0.05], max: [0.05, 0.05, 0.05]}
+walls:
+  - {type: plane, name: piston, point: [0, 0, 0], normal: [0, 0, 1], velocity: [0, 0, 0.2]}
+)";
+  DemCase c(yaml, {0, 0, 0});
+  c->particles().add(0, 0, 0.001, 2500, {0, 0, 0.0011});
+  c->refresh();
+  double peakForce = 0.0;
+  for (int k = 0; k < 20000; ++k) {
+    c->step(2e-7);
+    peakForce = std::max(peakForce, -c->wallLoads()[0].force.z);
+  }
+  EXPECT_NEAR(c->particles().velocity[0].z, 0.4, 0.004);
+  EXPECT_GT(peakForce, 0.0);  // the wall load sees the particle pushing back
+  EXPECT_EQ(c->wallLoads()[0].name, "piston");
+}
+
+// A particle resting on the inside of a drum spinning about its own axis (no gravity, held by
+// a small radial push) is dragged along by friction towards the wall velocity.
+TEST(DemWalls, RotatingDrumDragsParticleByFriction) {
+  const std::string yaml = materialsYaml("hertz_mindlin", 0.5, 0.5) + R"(
+domain: {min: [-0.05, -0.05, -0.05], max: [0.05, 0.05, 0.05]}
+walls:
+  - {type: cylinder, name: drum, base: [0, 0, -0.02], axis: [0, 0, 0.04], radius: 0.02,
+     angular_velocity: [0, 0, 5], centre: [0, 0, 0]}
+)";
+  DemCase c(yaml, {0.5, 0, 0});  // "gravity" pushes it onto the wall at x = +R
+  c->particles().add(0, 0, 0.001, 2500, {0.019, 0, 0});
+  c->refresh();
+  for (int k = 0; k < 20000; ++k) c->step(5e-6);
+  EXPECT_GT(c->particles().velocity[0].y, 0.0);  // wall surface moves along +y at x = +R
+  EXPECT_LT(c->wallLoads()[0].torque.z, 0.0);  // the particle brakes the drum
+}
+
+}  // namespace
+}  // namespace gf::dem

@@ -1,0 +1,107 @@
+// Extraction operations of `grainflow validate` on synthetic series with known answers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "app/validation_extract.hpp"
+
+using namespace gf::app::validation;
+
+namespace {
+// y = sin(x) sampled on [0, 2 pi] with n intervals.
+Series sine(int n) {
+  Series s;
+  for (int i = 0; i <= n; ++i) {
+    const double x = 2.0 * M_PI * i / n;
+    s.x.push_back(x);
+    s.y.push_back(std::sin(x));
+  }
+  return s;
+}
+}  // namespace
+
+TEST(Extract, SimpleReductions) {
+  const Series s{{0.0, 1.0, 2.0, 3.0}, {4.0, -1.0, 7.0, 2.0}};
+  EXPECT_EQ(finalValue(s), 2.0);
+  EXPECT_EQ(initialValue(s), 4.0);
+  EXPECT_EQ(minimum(s), -1.0);
+  EXPECT_EQ(maximum(s), 7.0);
+  // trapezoid: (1.5 + 3 + 4.5) / 3
+  EXPECT_DOUBLE_EQ(mean(s), 3.0);
+  const Series w = window(s, 0.5, 2.0);
+  ASSERT_EQ(w.x.size(), 2u);
+  EXPECT_EQ(w.y[0], -1.0);
+  EXPECT_EQ(w.y[1], 7.0);
+}
+
+TEST(Extract, MeanIsTimeWeightedNotSampleWeighted) {
+  // Dense samples early, sparse late: the time average of y = x on [0, 10] is 5.
+  Series s;
+  for (int i = 0; i <= 100; ++i) s.x.push_back(0.01 * i), s.y.push_back(0.01 * i);
+  s.x.push_back(10.0), s.y.push_back(10.0);
+  EXPECT_NEAR(mean(s), 5.0, 1e-12);
+}
+
+TEST(Extract, InterpolationInsideAndOutside) {
+  const Series s{{0.0, 1.0, 3.0}, {0.0, 2.0, 6.0}};
+  EXPECT_DOUBLE_EQ(*interpolate(s, 0.5), 1.0);
+  EXPECT_DOUBLE_EQ(*interpolate(s, 2.0), 4.0);
+  EXPECT_DOUBLE_EQ(*interpolate(s, 3.0), 6.0);
+  EXPECT_DOUBLE_EQ(*interpolate(s, 1.0), 2.0);
+  EXPECT_FALSE(interpolate(s, 3.1).has_value());
+  EXPECT_FALSE(interpolate(s, -0.1).has_value());
+}
+
+TEST(Extract, CrossingsConvergeToTheExactRoot) {
+  // sin crosses 0.5 first at pi/6; linear interpolation error is O(h^2).
+  const double coarse = std::abs(*firstCrossing(sine(50), 0.5) - M_PI / 6);
+  const double fine = std::abs(*firstCrossing(sine(500), 0.5) - M_PI / 6);
+  EXPECT_LT(fine, 2e-5);
+  EXPECT_LT(fine, coarse / 50.0);
+  EXPECT_FALSE(firstCrossing(sine(50), 2.0).has_value());
+}
+
+TEST(Extract, DurationAboveThreshold) {
+  // sin > 0.5 on (pi/6, 5 pi/6): duration 2 pi / 3.
+  EXPECT_NEAR(*durationAbove(sine(1000), 0.5), 2.0 * M_PI / 3.0, 1e-5);
+  // Never back below the threshold: no complete interval.
+  const Series rising{{0, 1, 2}, {0, 1, 2}};
+  EXPECT_FALSE(durationAbove(rising, 0.5).has_value());
+  EXPECT_FALSE(durationAbove(rising, 5.0).has_value());
+}
+
+TEST(Extract, LogLogSlopeRecoversPowerLaws) {
+  std::vector<double> x = {0.1, 0.3, 1.0, 3.0}, y;
+  for (double v : x) y.push_back(7.0 * std::pow(v, -0.2));
+  EXPECT_NEAR(logLogSlope(x, y), -0.2, 1e-12);
+  for (double& v : y) v = -v;  // sign does not matter (errors may be negative)
+  EXPECT_NEAR(logLogSlope(x, y), -0.2, 1e-12);
+  EXPECT_THROW(logLogSlope({1.0}, {1.0}), std::invalid_argument);
+}
+
+TEST(Extract, CompareValueAbsoluteAndRelative) {
+  const auto a = compareValue(1.02, 1.0, {0.03, false});
+  EXPECT_NEAR(a.error, 0.02, 1e-15);
+  EXPECT_TRUE(a.pass);
+  EXPECT_FALSE(compareValue(1.04, 1.0, {0.03, false}).pass);
+  const auto r = compareValue(-2.1, -2.0, {0.04, true});
+  EXPECT_NEAR(r.error, -0.05, 1e-12);  // (computed - reference) / |reference|
+  EXPECT_FALSE(r.pass);
+  EXPECT_FALSE(compareValue(NAN, 1.0, {1e9, false}).pass);
+  EXPECT_FALSE(compareValue(1.0, 0.0, {0.5, true}).pass);
+}
+
+TEST(Extract, CompareCurveReportsTheWorstPointInsideTheRange) {
+  const Series computed{{0.0, 1.0, 2.0}, {0.0, 1.0, 2.0}};
+  const Series reference{{0.5, 1.5, 5.0}, {0.5, 1.7, 99.0}};  // x = 5 is outside: ignored
+  const auto c = compareCurve(computed, reference, {0.1, false});
+  ASSERT_TRUE(c.has_value());
+  EXPECT_DOUBLE_EQ(c->reference, 1.7);
+  EXPECT_DOUBLE_EQ(c->computed, 1.5);
+  EXPECT_NEAR(c->error, -0.2, 1e-12);
+  EXPECT_FALSE(c->pass);
+  const auto rel = compareCurve(computed, reference, {0.2, true});  // relative to max |reference| = 99
+  ASSERT_TRUE(rel.has_value());
+  EXPECT_TRUE(rel->pass);
+  EXPECT_FALSE(compareCurve(computed, Series{{7.0}, {1.0}}, {1.0, false}).has_value());
+}
