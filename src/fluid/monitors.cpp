@@ -17,7 +17,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 int readAxis(Params& p) {
-  const std::string a = p.choice({"axis", "-", "plane normal"}, {"x", "y", "z"}, "x");
+  const std::string a = p.choice({"plane_normal", "-", "axis normal to the plane(s)"}, {"x", "y", "z"}, "x");
   return a == "x" ? 0 : (a == "y" ? 1 : 2);
 }
 
@@ -78,7 +78,7 @@ class MaxDivergenceMonitor : public Monitor {
 
 class ProbeMonitor : public Monitor {
  public:
-  explicit ProbeMonitor(Params& p) : point_(p.vec3({"point", "m", "probe location"})) {}
+  explicit ProbeMonitor(Params& p) : point_(p.vec3({"probe_point", "m", "probe location"})) {}
   std::vector<MonitorColumn> columns() const override {
     return {{"velocity_x", "m/s"}, {"velocity_y", "m/s"}, {"velocity_z", "m/s"}, {"pressure", "Pa"}};
   }

@@ -31,9 +31,9 @@ fluid:
 )");
   Solver& s = *c.solver;
   for (int n = 0; n < 300; ++n) s.step(0.05);
-  Params mp = Params::loadString("{type: fluid_pressure_drop, axis: x, position_1: 1.0, position_2: 3.0}", "m.yaml");
+  Params mp = Params::loadString("{type: fluid_pressure_drop, plane_normal: x, position_1: 1.0, position_2: 3.0}", "m.yaml");
   auto drop = Registry<Monitor>::instance().createByName("fluid_pressure_drop", mp);
-  Params fp = Params::loadString("{axis: x, position: 2.0}", "f.yaml");
+  Params fp = Params::loadString("{plane_normal: x, position: 2.0}", "f.yaml");
   auto rate = Registry<Monitor>::instance().createByName("fluid_flow_rate", fp);
   RunState st;
   st.fluid = &s;
