@@ -147,6 +147,7 @@ class Solver {
 
   double time_ = 0.0, dtPrev_ = 0.0, lastDt_ = 0.0;
   long long steps_ = 0;
+  mutable long long healthCheckedAt_ = -1;  // steps_ at the last complete health scan
   StepStatistics stats_;
   PhaseTimers timers_;
 };
