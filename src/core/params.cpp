@@ -219,16 +219,34 @@ void Params::record(const Key& k, std::string value, bool fromDefault) const {
 
 // ---------------------------------------------------------------- scalars
 
+const YAML::Node* Params::lookup(const Key& k, const char* type, const std::string* defaultText,
+                                 const std::string& allowed, const std::string& expected) const {
+  markQueried(k.name);
+  if (documenting()) {
+    document(k, type, defaultText != nullptr ? *defaultText : "", allowed);
+    return nullptr;
+  }
+  const YAML::Node* n = find(k.name);
+  if (n != nullptr && !n->IsNull()) return n;
+  if (defaultText == nullptr) fail(k.name, "nothing", expected + " (this key is required)");
+  record(k, *defaultText, true);
+  return nullptr;
+}
+
 namespace {
+
+std::string numberExpected(const Key& k) { return fmt::format("a number [{}]", k.unit); }
+std::string vectorExpected(const Key& k) { return fmt::format("a list of 3 numbers [x, y, z] [{}]", k.unit); }
+std::string listExpected(const Key& k) { return fmt::format("a list of numbers [{}]", k.unit); }
 
 /// Reads one node as a double, with a precise error on failure.
 double parseReal(const Params& p, const Key& k, const YAML::Node& n) {
-  if (!n.IsScalar()) p.fail(k.name, describeNode(n), fmt::format("a number [{}]", k.unit));
+  if (!n.IsScalar()) p.fail(k.name, describeNode(n), numberExpected(k));
   double v = 0.0;
   try {
     v = n.as<double>();
   } catch (const YAML::Exception&) {
-    p.fail(k.name, describeNode(n), fmt::format("a number [{}]", k.unit));
+    p.fail(k.name, describeNode(n), numberExpected(k));
   }
   if (!std::isfinite(v)) p.fail(k.name, describeNode(n), fmt::format("a finite number [{}]", k.unit));
   if (!k.range.contains(v))
@@ -236,46 +254,6 @@ double parseReal(const Params& p, const Key& k, const YAML::Node& n) {
   return v;
 }
 
-double placeholderFor(const Range& r) {
-  if (r.contains(1.0)) return 1.0;
-  if (r.contains(r.min)) return r.min;
-  if (!std::isinf(r.min) && !std::isinf(r.max)) return 0.5 * (r.min + r.max);
-  if (!std::isinf(r.min)) return r.min + 1.0;
-  return r.max - 1.0;
-}
-
-}  // namespace
-
-double Params::real(const Key& k, double defaultValue) {
-  markQueried(k.name);
-  if (documenting()) {
-    document(k, "real", formatReal(defaultValue), k.range.describe());
-    return defaultValue;
-  }
-  const YAML::Node* n = find(k.name);
-  if (n == nullptr || n->IsNull()) {
-    record(k, formatReal(defaultValue), true);
-    return defaultValue;
-  }
-  const double v = parseReal(*this, k, *n);
-  record(k, formatReal(v), false);
-  return v;
-}
-
-double Params::real(const Key& k) {
-  markQueried(k.name);
-  if (documenting()) {
-    document(k, "real", "", k.range.describe());
-    return placeholderFor(k.range);
-  }
-  const YAML::Node* n = find(k.name);
-  if (n == nullptr || n->IsNull()) fail(k.name, "nothing", fmt::format("a number [{}] (this key is required)", k.unit));
-  const double v = parseReal(*this, k, *n);
-  record(k, formatReal(v), false);
-  return v;
-}
-
-namespace {
 long long parseInteger(const Params& p, const Key& k, const YAML::Node& n) {
   long long v = 0;
   if (!n.IsScalar()) p.fail(k.name, describeNode(n), "an integer");
@@ -288,98 +266,15 @@ long long parseInteger(const Params& p, const Key& k, const YAML::Node& n) {
     p.fail(k.name, std::to_string(v), fmt::format("an integer {}", k.range.describe()));
   return v;
 }
-}  // namespace
 
-long long Params::integer(const Key& k, long long defaultValue) {
-  markQueried(k.name);
-  if (documenting()) {
-    document(k, "integer", std::to_string(defaultValue), k.range.describe());
-    return defaultValue;
-  }
-  const YAML::Node* n = find(k.name);
-  if (n == nullptr || n->IsNull()) {
-    record(k, std::to_string(defaultValue), true);
-    return defaultValue;
-  }
-  const long long v = parseInteger(*this, k, *n);
-  record(k, std::to_string(v), false);
-  return v;
-}
-
-long long Params::integer(const Key& k) {
-  markQueried(k.name);
-  if (documenting()) {
-    document(k, "integer", "", k.range.describe());
-    return static_cast<long long>(placeholderFor(k.range));
-  }
-  const YAML::Node* n = find(k.name);
-  if (n == nullptr || n->IsNull()) fail(k.name, "nothing", "an integer (this key is required)");
-  const long long v = parseInteger(*this, k, *n);
-  record(k, std::to_string(v), false);
-  return v;
-}
-
-bool Params::boolean(const Key& k, bool defaultValue) {
-  markQueried(k.name);
-  if (documenting()) {
-    document(k, "boolean", defaultValue ? "true" : "false", "true, false");
-    return defaultValue;
-  }
-  const YAML::Node* n = find(k.name);
-  if (n == nullptr || n->IsNull()) {
-    record(k, defaultValue ? "true" : "false", true);
-    return defaultValue;
-  }
-  bool v = false;
-  try {
-    if (!n->IsScalar()) throw YAML::Exception(YAML::Mark::null_mark(), "not scalar");
-    v = n->as<bool>();
-  } catch (const YAML::Exception&) {
-    fail(k.name, describeNode(*n), "true or false");
-  }
-  record(k, v ? "true" : "false", false);
-  return v;
-}
-
-std::string Params::text(const Key& k, const std::string& defaultValue) {
-  markQueried(k.name);
-  if (documenting()) {
-    document(k, "text", defaultValue.empty() ? "\"\"" : defaultValue, "any text");
-    return defaultValue;
-  }
-  const YAML::Node* n = find(k.name);
-  if (n == nullptr || n->IsNull()) {
-    record(k, defaultValue, true);
-    return defaultValue;
-  }
-  if (!n->IsScalar()) fail(k.name, describeNode(*n), "a text");
-  record(k, n->Scalar(), false);
-  return n->Scalar();
-}
-
-std::string Params::text(const Key& k) {
-  markQueried(k.name);
-  if (documenting()) {
-    document(k, "text", "", "any text");
-    return "placeholder";
-  }
-  const YAML::Node* n = find(k.name);
-  if (n == nullptr || n->IsNull()) fail(k.name, "nothing", "a text (this key is required)");
-  if (!n->IsScalar() || n->Scalar().empty()) fail(k.name, describeNode(*n), "a non-empty text");
-  record(k, n->Scalar(), false);
-  return n->Scalar();
-}
-
-namespace {
 Vec3 parseVec3(const Params& p, const Key& k, const YAML::Node& n) {
-  const std::string expected = fmt::format("a list of 3 numbers [x, y, z] [{}]", k.unit);
-  if (!n.IsSequence() || n.size() != 3) p.fail(k.name, describeNode(n), expected);
+  if (!n.IsSequence() || n.size() != 3) p.fail(k.name, describeNode(n), vectorExpected(k));
   Vec3 v;
   for (int i = 0; i < 3; ++i) {
     try {
       v[i] = n[i].as<double>();
     } catch (const YAML::Exception&) {
-      p.fail(k.name, fmt::format("component {} = {}", i, describeNode(n[i])), expected);
+      p.fail(k.name, fmt::format("component {} = {}", i, describeNode(n[i])), vectorExpected(k));
     }
     if (!std::isfinite(v[i]) || !k.range.contains(v[i]))
       p.fail(k.name, fmt::format("component {} = {:g}", i, v[i]),
@@ -387,82 +282,131 @@ Vec3 parseVec3(const Params& p, const Key& k, const YAML::Node& n) {
   }
   return v;
 }
+
+std::string formatList(const std::vector<double>& values) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < values.size(); ++i) s += (i ? ", " : "") + formatReal(values[i]);
+  return s + "]";
+}
+
+/// A value for a required key in documentation mode, so that readers can go on.
+double placeholderFor(const Range& r) {
+  if (r.contains(1.0)) return 1.0;
+  if (r.contains(r.min)) return r.min;
+  if (!std::isinf(r.min) && !std::isinf(r.max)) return 0.5 * (r.min + r.max);
+  if (!std::isinf(r.min)) return r.min + 1.0;
+  return r.max - 1.0;
+}
+
 }  // namespace
 
+double Params::real(const Key& k, double defaultValue) {
+  const std::string text = formatReal(defaultValue);
+  const YAML::Node* n = lookup(k, "real", &text, k.range.describe(), numberExpected(k));
+  if (n == nullptr) return defaultValue;
+  const double v = parseReal(*this, k, *n);
+  record(k, formatReal(v), false);
+  return v;
+}
+
+double Params::real(const Key& k) {
+  const YAML::Node* n = lookup(k, "real", nullptr, k.range.describe(), numberExpected(k));
+  if (n == nullptr) return placeholderFor(k.range);  // documentation mode
+  const double v = parseReal(*this, k, *n);
+  record(k, formatReal(v), false);
+  return v;
+}
+
+long long Params::integer(const Key& k, long long defaultValue) {
+  const std::string text = std::to_string(defaultValue);
+  const YAML::Node* n = lookup(k, "integer", &text, k.range.describe(), "an integer");
+  if (n == nullptr) return defaultValue;
+  const long long v = parseInteger(*this, k, *n);
+  record(k, std::to_string(v), false);
+  return v;
+}
+
+long long Params::integer(const Key& k) {
+  const YAML::Node* n = lookup(k, "integer", nullptr, k.range.describe(), "an integer");
+  if (n == nullptr) return static_cast<long long>(placeholderFor(k.range));  // documentation mode
+  const long long v = parseInteger(*this, k, *n);
+  record(k, std::to_string(v), false);
+  return v;
+}
+
+bool Params::boolean(const Key& k, bool defaultValue) {
+  const std::string text = defaultValue ? "true" : "false";
+  const YAML::Node* n = lookup(k, "boolean", &text, "true, false", "true or false");
+  if (n == nullptr) return defaultValue;
+  bool v = false;
+  if (!n->IsScalar() || !YAML::convert<bool>::decode(*n, v)) fail(k.name, describeNode(*n), "true or false");
+  record(k, v ? "true" : "false", false);
+  return v;
+}
+
+std::string Params::text(const Key& k, const std::string& defaultValue) {
+  const std::string text = defaultValue.empty() ? "\"\"" : defaultValue;
+  const YAML::Node* n = lookup(k, "text", &text, "any text", "a text");
+  if (n == nullptr) return defaultValue;
+  if (!n->IsScalar()) fail(k.name, describeNode(*n), "a text");
+  record(k, n->Scalar(), false);
+  return n->Scalar();
+}
+
+std::string Params::text(const Key& k) {
+  const YAML::Node* n = lookup(k, "text", nullptr, "any text", "a text");
+  if (n == nullptr) return "placeholder";  // documentation mode
+  if (!n->IsScalar() || n->Scalar().empty()) fail(k.name, describeNode(*n), "a non-empty text");
+  record(k, n->Scalar(), false);
+  return n->Scalar();
+}
+
 Vec3 Params::vec3(const Key& k, Vec3 defaultValue) {
-  markQueried(k.name);
-  if (documenting()) {
-    document(k, "vector3", formatVec(defaultValue), k.range.describe());
-    return defaultValue;
-  }
-  const YAML::Node* n = find(k.name);
-  if (n == nullptr || n->IsNull()) {
-    record(k, formatVec(defaultValue), true);
-    return defaultValue;
-  }
+  const std::string text = formatVec(defaultValue);
+  const YAML::Node* n = lookup(k, "vector3", &text, k.range.describe(), vectorExpected(k));
+  if (n == nullptr) return defaultValue;
   const Vec3 v = parseVec3(*this, k, *n);
   record(k, formatVec(v), false);
   return v;
 }
 
 Vec3 Params::vec3(const Key& k) {
-  markQueried(k.name);
-  if (documenting()) {
-    document(k, "vector3", "", k.range.describe());
+  const YAML::Node* n = lookup(k, "vector3", nullptr, k.range.describe(), vectorExpected(k));
+  if (n == nullptr) {  // documentation mode
     const double c = placeholderFor(k.range);
     return {c, c, c};
   }
-  const YAML::Node* n = find(k.name);
-  if (n == nullptr || n->IsNull())
-    fail(k.name, "nothing", fmt::format("a list of 3 numbers [x, y, z] [{}] (this key is required)", k.unit));
   const Vec3 v = parseVec3(*this, k, *n);
   record(k, formatVec(v), false);
   return v;
 }
 
 std::vector<double> Params::reals(const Key& k, const std::vector<double>& defaultValue) {
-  markQueried(k.name);
-  auto format = [](const std::vector<double>& values) {
-    std::string s = "[";
-    for (std::size_t i = 0; i < values.size(); ++i) s += (i ? ", " : "") + formatReal(values[i]);
-    return s + "]";
-  };
-  if (documenting()) {
-    document(k, "list of reals", format(defaultValue), k.range.describe());
-    return defaultValue;
-  }
-  const YAML::Node* n = find(k.name);
-  if (n == nullptr || n->IsNull()) {
-    record(k, format(defaultValue), true);
-    return defaultValue;
-  }
-  if (!n->IsSequence()) fail(k.name, describeNode(*n), fmt::format("a list of numbers [{}]", k.unit));
+  const std::string text = formatList(defaultValue);
+  const YAML::Node* n = lookup(k, "list of reals", &text, k.range.describe(), listExpected(k));
+  if (n == nullptr) return defaultValue;
+  if (!n->IsSequence()) fail(k.name, describeNode(*n), listExpected(k));
   std::vector<double> out;
   for (std::size_t i = 0; i < n->size(); ++i) {
     double v = 0;
     try {
       v = (*n)[i].as<double>();
     } catch (const YAML::Exception&) {
-      fail(k.name, fmt::format("item {} = {}", i, describeNode((*n)[i])), fmt::format("a list of numbers [{}]", k.unit));
+      fail(k.name, fmt::format("item {} = {}", i, describeNode((*n)[i])), listExpected(k));
     }
     if (!std::isfinite(v) || !k.range.contains(v))
       fail(k.name, fmt::format("item {} = {:g}", i, v), fmt::format("values {} [{}]", k.range.describe(), k.unit));
     out.push_back(v);
   }
-  record(k, format(out), false);
+  record(k, formatList(out), false);
   return out;
 }
 
-std::string Params::choice(const Key& k, const std::vector<std::string>& allowed, const std::string& defaultValue) {
-  markQueried(k.name);
-  if (documenting()) {
-    document(k, "choice", defaultValue, joinNames(allowed));
-    return defaultValue;
-  }
-  const YAML::Node* n = find(k.name);
-  if (n == nullptr || n->IsNull()) {
-    record(k, defaultValue, true);
-    return defaultValue;
+std::string Params::readChoice(const Key& k, const std::vector<std::string>& allowed, const std::string* defaultValue) {
+  const YAML::Node* n = lookup(k, "choice", defaultValue, joinNames(allowed), "one of: " + joinNames(allowed));
+  if (n == nullptr) {
+    if (defaultValue != nullptr) return *defaultValue;
+    return allowed.empty() ? std::string() : allowed.front();  // documentation mode, required key
   }
   if (!n->IsScalar()) fail(k.name, describeNode(*n), "one of: " + joinNames(allowed));
   const std::string v = n->Scalar();
@@ -475,15 +419,12 @@ std::string Params::choice(const Key& k, const std::vector<std::string>& allowed
   return v;
 }
 
+std::string Params::choice(const Key& k, const std::vector<std::string>& allowed, const std::string& defaultValue) {
+  return readChoice(k, allowed, &defaultValue);
+}
+
 std::string Params::choice(const Key& k, const std::vector<std::string>& allowed) {
-  markQueried(k.name);
-  if (documenting()) {
-    document(k, "choice", "", joinNames(allowed));
-    return allowed.empty() ? std::string() : allowed.front();
-  }
-  const YAML::Node* n = find(k.name);
-  if (n == nullptr || n->IsNull()) fail(k.name, "nothing", "one of: " + joinNames(allowed) + " (this key is required)");
-  return choice(k, allowed, "");
+  return readChoice(k, allowed, nullptr);
 }
 
 // ---------------------------------------------------------------- nesting

@@ -134,6 +134,12 @@ class Params {
   Params(std::shared_ptr<Shared> shared, std::shared_ptr<Section> section);
   Params childParams(const Key& k, const YAML::Node& node, const std::string& childPrefix, bool isList);
   const YAML::Node* find(std::string_view key) const;
+  /// Common path of the value readers: marks the key as known; in documentation mode documents it
+  /// and returns nullptr; otherwise returns the key's node, or records the default and returns
+  /// nullptr, or (no default given) fails naming what was expected.
+  const YAML::Node* lookup(const Key& k, const char* type, const std::string* defaultText, const std::string& allowed,
+                           const std::string& expected) const;
+  std::string readChoice(const Key& k, const std::vector<std::string>& allowed, const std::string* defaultValue);
   void markQueried(std::string_view key) const;
   void document(const Key& k, std::string type, std::string defaultValue, std::string allowed) const;
   void record(const Key& k, std::string value, bool fromDefault) const;

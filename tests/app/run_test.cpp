@@ -136,3 +136,31 @@ TEST(Docs, CaseFileReferenceMatchesSchema) {
   EXPECT_EQ(r.output, readAll(gf::testing::sourcePath("docs/case-file.md")))
       << "docs/case-file.md is out of date: regenerate it with `build/grainflow docs > docs/case-file.md`";
 }
+
+TEST(Run, FluidCflBlowUpStopsWithCellAndKeepsCheckpoint) {
+  // 20 m/s through 1 cm cells with a 1 ms fluid step: CFL = 2 > cfl_limit = 1.
+  const std::string text = R"(case: {name: cfl}
+domain: {min: [0, 0, 0], max: [0.04, 0.04, 0.08]}
+time: {end: 0.05, dem_step: 1.0e-5, coupling_interval: 100}
+materials: [{name: glass, density: 2500.0, youngs_modulus: 5.0e6}]
+walls: [{type: plane, point: [0, 0, 0], normal: [0, 0, 1]}]
+insertion: [{type: lattice, material: glass, origin: [0.02, 0.02, 0.002], spacing: 0.01, diameter: 0.004}]
+fluid:
+  cells: [4, 4, 8]
+  boundaries:
+    z_min: {type: inlet, velocity: [0, 0, 20.0]}
+    z_max: {type: pressure_outlet}
+checkpoint: {interval_steps: 100}
+)";
+  TempDir dir;
+  const std::string file = dir.write("case.yaml", text);
+  const auto r = grainflow("run " + file + " --quiet --threads 1 --output " + dir.file("o"));
+  EXPECT_EQ(r.exitCode, 3) << r.output;
+  EXPECT_NE(r.output.find("run diverged at step"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("fluid CFL number"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("fluid cell ("), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("at position ("), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("o/checkpoint.bin")) ||
+              r.output.find("no checkpoint had been written") != std::string::npos)
+      << r.output;
+}
