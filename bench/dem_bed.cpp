@@ -6,6 +6,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "core/domain.hpp"
 #include "core/params.hpp"
@@ -25,6 +27,9 @@ struct Bed {
   std::unique_ptr<System> system;
   Bed(int nx, int ny, int nz, double spacingFactor, bool walls) : params(gf::Params::loadString(yaml(nx, ny, nz, spacingFactor, walls), "bench.yaml")) {
     domain = gf::Domain::read(params);
+    system = std::make_unique<System>(params, domain, gf::Vec3{0, 0, -9.81});
+  }
+  Bed(gf::Params p, const gf::Domain& d) : params(std::move(p)), domain(d) {
     system = std::make_unique<System>(params, domain, gf::Vec3{0, 0, -9.81});
   }
   static std::string yaml(int nx, int ny, int nz, double spacingFactor, bool walls) {
@@ -70,6 +75,42 @@ void BM_DemDenseBed(benchmark::State& state) {
   runSteps(state, bed, 200);
 }
 BENCHMARK(BM_DemDenseBed)->Unit(benchmark::kMillisecond)->MinTime(3.0)->UseRealTime();
+
+// Upper bound on contact density: ~15,900 spheres on a face-centred cubic lattice (nearest
+// distance d: 12 touching neighbours each, twice a random dense bed), inserted from a CSV file.
+void BM_DemDenseBedFcc(benchmark::State& state) {
+  const double d = 0.002, a = d * std::sqrt(2.0);
+  const int cells = 21, layers = 9;
+  const std::string csv = (std::filesystem::temp_directory_path() / "grainflow_bench_fcc.csv").string();
+  {
+    std::ofstream out(csv);
+    const double basis[4][3] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
+    for (int k = 0; k < layers; ++k)
+      for (int j = 0; j < cells; ++j)
+        for (int i = 0; i < cells; ++i)
+          for (const auto& b : basis)
+            out << fmt::format("{},{},{},{}\n", (i + b[0]) * a + 0.5 * d, (j + b[1]) * a + 0.5 * d,
+                               (k + b[2]) * a + 0.5 * d, 0.5 * d);
+  }
+  const double l = cells * a + 0.5 * d;
+  const std::string yaml = fmt::format(R"(
+materials:
+  - {{name: glass, density: 2500, youngs_modulus: 1e7, poisson_ratio: 0.45}}
+contact: {{law: hertz_mindlin, restitution: 0.3, friction: 0.5}}
+domain: {{min: [0, 0, 0], max: [{}, {}, 0.2]}}
+insertion:
+  - {{type: csv_file, file: {}}}
+walls:
+  - {{type: box, min: [0, 0, 0], max: [{}, {}, 0.2]}}
+neighbour_search: {{skin: 0.0002}}
+)",
+                                       l, l, csv, l, l);
+  gf::Params params = gf::Params::loadString(yaml, "bench.yaml");
+  const gf::Domain domain = gf::Domain::read(params);
+  Bed bed(params, domain);
+  runSteps(state, bed, 200);
+}
+BENCHMARK(BM_DemDenseBedFcc)->Unit(benchmark::kMillisecond)->MinTime(3.0)->UseRealTime();
 
 // Same count, spacing 3 d: no contacts, gravity only.
 void BM_DemFreeFlight(benchmark::State& state) {

@@ -54,10 +54,69 @@ struct PartnerBuffers {
   }
 };
 
-/// Sets force = body forces, then adds all particle-particle contact forces.
+/// Current state of the walls, as the contact loop sees it.
+struct WallState {
+  const std::vector<WallPrimitive>* primitives;
+  const std::vector<int>* material;    // per wall
+  const std::vector<Vec3>* velocity;   // per wall, translation
+  const std::vector<Vec3>* angularVelocity;
+  const std::vector<Vec3>* centre;     // per wall, current
+};
+
+/// Adds the wall contact forces of particle i (touches only particle i and its wall entries).
 template <NormalLaw N, RollingLaw R, CohesionLaw C>
-void particleContactForces(ParticleSet& p, NeighbourList& list, const ContactTable& table, const PeriodicBox& box,
-                           const Vec3& gravity, double dt, PartnerBuffers& buffers) {
+inline void wallContactsOfParticle(ParticleSet& p, WallContactList& list, const ContactTable& table,
+                                   const WallState& walls, double dt, std::size_t i) {
+  const std::uint32_t first = list.rowStart[i], last = list.rowStart[i + 1];
+  if (first == last) return;
+  const int types = table.count();
+  const PairCoefficients* coefficients = table.data();
+  const Vec3 xi = p.position[i], vi = p.velocity[i], wi = p.angularVelocity[i];
+  const double ri = p.radius[i], mi = p.mass[i];
+  for (std::uint32_t k = first; k < last; ++k) {
+    const WallPrimitive& prim = (*walls.primitives)[list.primitive[k]];
+    const WallDistance wd = prim.active ? distanceToPrimitive(prim, xi) : WallDistance{1e300, {}};
+    if (wd.distance >= ri) {
+      list.tangentialHistory[k] = Vec3{};
+      if constexpr (R == RollingLaw::Epsd) list.rollingHistory[k] = Vec3{};
+      list.force[k] = Vec3{};
+      continue;
+    }
+    const int w = prim.wall;
+    const Vec3 contactPoint = xi - wd.distance * wd.normal;
+    const Vec3 ww = (*walls.angularVelocity)[w];
+    const Vec3 wallVelocity = (*walls.velocity)[w] + cross(ww, contactPoint - (*walls.centre)[w]);
+    ContactGeometry g;
+    g.normal = wd.normal;
+    g.overlap = ri - wd.distance;
+    g.relativeVelocity = vi - ri * cross(wi, g.normal) - wallVelocity;
+    g.relativeAngularVelocity = wi - ww;
+    g.effectiveRadius = ri;
+    g.effectiveMass = mi;
+    if constexpr (R == RollingLaw::Epsd) g.rollingInertia = 1.4 * mi * ri * ri;
+    const ContactResult c = contactForce<N, R, C>(coefficients[p.type[i] * types + (*walls.material)[w]], g,
+                                                  list.tangentialHistory[k],
+                                                  R == RollingLaw::Epsd ? &list.rollingHistory[k] : nullptr, dt);
+    p.force[i] += c.force;
+    p.torque[i] += c.rollingTorque - ri * cross(g.normal, c.tangential);
+    list.force[k] = c.force;
+    list.point[k] = contactPoint;
+  }
+}
+
+/// Sets force = body forces + particle-particle + particle-wall contact forces, then (if
+/// halfKick != 0) applies the closing velocity-Verlet half kick v += halfKick F/m, w += halfKick T/I
+/// to each thread's block once its forces are final (one pass less over memory).
+template <NormalLaw N, RollingLaw R, CohesionLaw C>
+void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& wallList, const WallState& walls,
+                          const ContactTable& table, const PeriodicBox& box, const Vec3& gravity, double dt,
+                          double halfKick, PartnerBuffers& buffers) {
+  const bool withWalls = !walls.primitives->empty();
+  auto kick = [&](std::size_t i) {
+    const double invMass = 1.0 / p.mass[i];
+    p.velocity[i] += (halfKick * invMass) * p.force[i];
+    p.angularVelocity[i] += (halfKick * invMass / (0.4 * p.radius[i] * p.radius[i])) * p.torque[i];
+  };
   const std::size_t n = p.size();
   const int threads = omp_get_max_threads();
   buffers.prepare(threads, n);
@@ -95,14 +154,16 @@ void particleContactForces(ParticleSet& p, NeighbourList& list, const ContactTab
         }
         const double dist = std::sqrt(dist2);
         ContactGeometry g;
-        g.normal = d / dist;
+        g.normal = (1.0 / dist) * d;
         g.overlap = rsum - dist;
         const Vec3 wj = p.angularVelocity[j];
         g.relativeVelocity = vi - p.velocity[j] - cross(ri * wi + rj * wj, g.normal);
         g.relativeAngularVelocity = wi - wj;
-        g.effectiveRadius = ri * rj / rsum;
-        const double mj = p.mass[j];
-        g.effectiveMass = mi * mj / (mi + mj);
+        // R* = r_i r_j/(r_i + r_j) and m* = m_i m_j/(m_i + m_j) with one division.
+        const double mj = p.mass[j], msum = mi + mj;
+        const double inv = 1.0 / (rsum * msum);
+        g.effectiveRadius = ri * rj * msum * inv;
+        g.effectiveMass = mi * mj * rsum * inv;
         if constexpr (R == RollingLaw::Epsd)
           g.rollingInertia = 1.0 / (1.0 / (1.4 * mi * ri * ri) + 1.0 / (1.4 * mj * rj * rj));
         const ContactResult c = contactForce<N, R, C>(coefficients[ti * types + p.type[j]], g,
@@ -125,6 +186,10 @@ void particleContactForces(ParticleSet& p, NeighbourList& list, const ContactTab
       }
       force[i] += fi;
       torque[i] += tqi;
+      if (withWalls) wallContactsOfParticle<N, R, C>(p, wallList, table, walls, dt, i);
+      // Half list: all contributions to i come from rows <= i; in the first block none come from
+      // other threads, so the force is final here and the kick can use it while it is in cache.
+      if (t == 0 && halfKick != 0.0) kick(i);
     }
     if (t < team - 1) {
       buffers.lo[t] = touchedLo;
@@ -142,59 +207,9 @@ void particleContactForces(ParticleSet& p, NeighbourList& list, const ContactTab
         buffers.torque[s][i] = Vec3{};
       }
     }
+    if (t > 0 && halfKick != 0.0)
+      for (std::size_t i = begin; i < end; ++i) kick(i);
   }
-}
-
-/// Current state of the walls, as the contact loop sees it.
-struct WallState {
-  const std::vector<WallPrimitive>* primitives;
-  const std::vector<int>* material;    // per wall
-  const std::vector<Vec3>* velocity;   // per wall, translation
-  const std::vector<Vec3>* angularVelocity;
-  const std::vector<Vec3>* centre;     // per wall, current
-};
-
-/// Adds particle-wall contact forces (parallel over particles; each touches only its own row).
-template <NormalLaw N, RollingLaw R, CohesionLaw C>
-void wallContactForces(ParticleSet& p, WallContactList& list, const ContactTable& table, const WallState& walls,
-                       double dt) {
-  const int types = table.count();
-  const PairCoefficients* coefficients = table.data();
-  parallelFor(static_cast<std::int64_t>(p.size()), [&](std::int64_t i) {
-    const std::uint32_t first = list.rowStart[i], last = list.rowStart[i + 1];
-    if (first == last) return;
-    const Vec3 xi = p.position[i], vi = p.velocity[i], wi = p.angularVelocity[i];
-    const double ri = p.radius[i], mi = p.mass[i];
-    for (std::uint32_t k = first; k < last; ++k) {
-      const WallPrimitive& prim = (*walls.primitives)[list.primitive[k]];
-      const WallDistance wd = prim.active ? distanceToPrimitive(prim, xi) : WallDistance{1e300, {}};
-      if (wd.distance >= ri) {
-        list.tangentialHistory[k] = Vec3{};
-        if constexpr (R == RollingLaw::Epsd) list.rollingHistory[k] = Vec3{};
-        list.force[k] = Vec3{};
-        continue;
-      }
-      const int w = prim.wall;
-      const Vec3 contactPoint = xi - wd.distance * wd.normal;
-      const Vec3 ww = (*walls.angularVelocity)[w];
-      const Vec3 wallVelocity = (*walls.velocity)[w] + cross(ww, contactPoint - (*walls.centre)[w]);
-      ContactGeometry g;
-      g.normal = wd.normal;
-      g.overlap = ri - wd.distance;
-      g.relativeVelocity = vi - ri * cross(wi, g.normal) - wallVelocity;
-      g.relativeAngularVelocity = wi - ww;
-      g.effectiveRadius = ri;
-      g.effectiveMass = mi;
-      if constexpr (R == RollingLaw::Epsd) g.rollingInertia = 1.4 * mi * ri * ri;
-      const ContactResult c = contactForce<N, R, C>(coefficients[p.type[i] * types + (*walls.material)[w]], g,
-                                                    list.tangentialHistory[k],
-                                                    R == RollingLaw::Epsd ? &list.rollingHistory[k] : nullptr, dt);
-      p.force[i] += c.force;
-      p.torque[i] += c.rollingTorque - ri * cross(g.normal, c.tangential);
-      list.force[k] = c.force;
-      list.point[k] = contactPoint;
-    }
-  });
 }
 
 }  // namespace gf::dem

@@ -1,4 +1,5 @@
 #include "dem/system.hpp"
+#include "dem/walls/wall_overlap.hpp"
 
 #include <fmt/format.h>
 
@@ -33,10 +34,13 @@ System::System(Params& root, const Domain& domain, const Vec3& gravity)
 
 void System::readWalls(Params& root) {
   const double reachDefault = norm(domain_.size());
-  for (Params& w : root.list({"walls", "-", "walls (geometry by type, optional prescribed motion)"})) {
+  std::vector<Params> wallEntries = root.list({"walls", "-", "walls (geometry by type, optional prescribed motion)"});
+  for (Params& w : wallEntries) {
     auto wall = Registry<Wall>::instance().create(w, {"type", "-", "wall type"});
     const std::string name = w.text({"name", "-", "wall name (for monitors)"}, fmt::format("wall{}", wallNames_.size()));
-    const int material = table_.readMaterial(w, {"material", "-", "wall material name"});
+    const int material =
+        table_.readMaterial(w, {"material", "-", "wall material name ('rigid': infinitely stiff, the default)"},
+                            kRigidMaterial);
     WallMotion motion;
     motion.velocity = w.vec3({"velocity", "m/s", "translation velocity of the wall"}, {});
     motion.angularVelocity = w.vec3({"angular_velocity", "rad/s", "angular velocity about 'centre'"}, {});
@@ -77,6 +81,11 @@ void System::readWalls(Params& root) {
     wallGeometryMoves_.push_back(moves);
     wallReach_.push_back(reach);
   }
+  std::vector<bool> fixed(wallNames_.size());
+  for (std::size_t w = 0; w < fixed.size(); ++w)
+    fixed[w] = wallMotion_[w].velocity == Vec3{} && wallMotion_[w].angularVelocity == Vec3{} &&
+               std::isinf(wallActiveUntil_[w]);
+  checkWallsDoNotOverlap(wallEntries, referencePrimitives_, wallNames_, fixed);
   primitives_ = referencePrimitives_;
   wallVelocity_.resize(wallNames_.size());
   wallAngularVelocity_.resize(wallNames_.size());
@@ -141,7 +150,7 @@ void System::refresh() {
   std::vector<std::uint32_t> order(particles_.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
   rebuild(std::move(order), list_.rows());
-  computeForces(0.0);
+  computeForces(0.0, 0.0);
 }
 
 bool System::needsRebuild(double particleMove) const {
@@ -183,13 +192,13 @@ void System::rebuild(std::vector<std::uint32_t> order, std::size_t listedRows) {
   ++rebuilds_;
 }
 
-void System::computeForces(double dt) {
+void System::computeForces(double dt, double halfKick) {
   ScopedPhase timer(timers_, Phase::Contacts);
   const WallState walls{&primitives_, &wallMaterial_, &wallVelocity_, &wallAngularVelocity_, &wallCentre_};
   dispatchLaws(table_.normalLaw(), table_.rollingLaw(), table_.cohesionLaw(),
                [&]<NormalLaw N, RollingLaw R, CohesionLaw C>() {
-                 particleContactForces<N, R, C>(particles_, list_, table_, box_, gravity_, dt, buffers_);
-                 if (!primitives_.empty()) wallContactForces<N, R, C>(particles_, wallList_, table_, walls, dt);
+                 contactForcesAndKick<N, R, C>(particles_, list_, wallList_, walls, table_, box_, gravity_, dt,
+                                               halfKick, buffers_);
                });
 }
 
@@ -222,15 +231,7 @@ void System::step(double dt) {
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
     rebuild(std::move(order), std::min(before, list_.rows()));
   }
-  computeForces(dt);
-  {
-    ScopedPhase timer(timers_, Phase::Integration);
-    parallelFor(static_cast<std::int64_t>(p.size()), [&](std::int64_t i) {
-      const double invMass = 1.0 / p.mass[i];
-      p.velocity[i] += (0.5 * dt * invMass) * p.force[i];
-      p.angularVelocity[i] += (0.5 * dt * invMass / (0.4 * p.radius[i] * p.radius[i])) * p.torque[i];
-    });
-  }
+  computeForces(dt, 0.5 * dt);  // includes the closing half kick
   ++steps_;
 }
 

@@ -92,7 +92,7 @@ class System {
   bool insertAndRemove(double dt);
   bool needsRebuild(double maxParticleDisplacement) const;
   void rebuild(std::vector<std::uint32_t> order, std::size_t listedRows);
-  void computeForces(double dt);
+  void computeForces(double dt, double halfKick);
 
   Domain domain_;
   PeriodicBox box_;

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "fluid/loops.hpp"
+
 namespace gf::fluid {
 
 namespace {
@@ -15,14 +17,16 @@ void forEachLine(const Field& f, int axis, Body&& body) {
   const int g = f.grid().ghosts;
   const int b1 = (axis + 1) % 3, b2 = (axis + 2) % 3;
   const auto& pts = f.points();
-  for (int q = -g; q < pts[b2] + g; ++q)
-    for (int p = -g; p < pts[b1] + g; ++p) {
-      int idx[3];
-      idx[axis] = 0;
-      idx[b1] = p;
-      idx[b2] = q;
-      body(p, q, f.index(idx[0], idx[1], idx[2]), f.stride(axis));
-    }
+  const int n1 = pts[b1] + 2 * g, n2 = pts[b2] + 2 * g;
+  // Lines are independent (each writes only its own ghost points): threaded for large faces.
+  parallelFor(static_cast<std::int64_t>(n1) * n2, [&](std::int64_t line) {
+    const int p = static_cast<int>(line % n1) - g, q = static_cast<int>(line / n1) - g;
+    int idx[3];
+    idx[axis] = 0;
+    idx[b1] = p;
+    idx[b2] = q;
+    body(p, q, f.index(idx[0], idx[1], idx[2]), f.stride(axis));
+  });
 }
 
 }  // namespace

@@ -4,12 +4,13 @@
 // than the work -- and much more on an oversubscribed machine. Results are deterministic for a
 // given thread count either way.
 #include <cstdint>
+#include <utility>
 
 #include "core/parallel.hpp"
 
 namespace gf::fluid {
 
-inline constexpr std::int64_t kSerialBelow = 1024;           // grid lines
+inline constexpr std::int64_t kSerialBelow = 2048;           // grid lines
 inline constexpr std::int64_t kSerialElementsBelow = 65536;  // single values
 
 template <class Body>
@@ -61,6 +62,38 @@ template <class Body>
 inline double parallelSumElements(std::int64_t n, Body&& body) {
   if (n < kSerialElementsBelow || gf::threadCount() == 1) return serialSum4(n, body);
   return gf::parallelSum(n, body);
+}
+
+/// Two sums in one pass: body(i, a, b) adds to a and b (and may write arrays). Fixed order per
+/// thread block, partials added in thread order: deterministic for a thread count.
+template <class Body>
+inline std::pair<double, double> parallelSum2Elements(std::int64_t n, Body&& body) {
+  if (n < kSerialElementsBelow || gf::threadCount() == 1) {
+    double a0 = 0.0, a1 = 0.0, b0 = 0.0, b1 = 0.0;
+    std::int64_t i = 0;
+    for (; i + 2 <= n; i += 2) {
+      body(i, a0, b0);
+      body(i + 1, a1, b1);
+    }
+    for (; i < n; ++i) body(i, a0, b0);
+    return {a0 + a1, b0 + b1};
+  }
+  double pa[256] = {}, pb[256] = {};
+#pragma omp parallel
+  {
+    const int t = omp_get_thread_num();
+    double la = 0.0, lb = 0.0;
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) body(i, la, lb);
+    pa[t & 255] += la;
+    pb[t & 255] += lb;
+  }
+  double a = 0.0, b = 0.0;
+  for (int t = 0; t < 256; ++t) {
+    a += pa[t];
+    b += pb[t];
+  }
+  return {a, b};
 }
 
 }  // namespace gf::fluid

@@ -12,9 +12,13 @@ namespace {
 
 /// N = div(rho eps u u_c) at the faces of component c (finite volume around the face; mass
 /// fluxes interpolated to the control-volume faces, transported value central or van Leer).
+///
+/// Where eps varies (UNIFORM = false) the explicit rest of the viscous stress of seed 000
+/// eq. 5.6, div(eps mu [(grad u)^T - 2/3 (div u) I]), is subtracted from N as well (it vanishes
+/// for constant eps and a divergence-free field, so the eps = 1 path skips it).
 template <bool TVD, bool UNIFORM>
 void convectionKernel(const Field u[3], const Field& eps, const std::vector<std::uint8_t>& mask, Field& out, int c,
-                      double rho, int dims) {
+                      double rho, double mu, int dims) {
   const Field& uc = u[c];
   const CartesianGrid& g = uc.grid();
   const auto& pts = uc.points();
@@ -63,6 +67,36 @@ void convectionKernel(const Field u[3], const Field& eps, const std::vector<std:
         const double qm = faceValue<TVD>(Fm, U[f - 2 * s], U[f - s], U[f], U[f + s]);
         N += (Fp * qp - Fm * qm) / g.spacing[d];
       }
+      if constexpr (!UNIFORM) {
+        // Explicit stress rest for component c:
+        //   d/dx_c(eps du_c/dx_c) - 2/3 d/dx_c(eps div u) + sum_{d != c} d/dx_d(eps du_d/dx_c)
+        auto divergence = [&](int ci, int cj, int ck) {
+          double dv = 0.0;
+          for (int a = 0; a < dims; ++a) {
+            const std::size_t fa = u[a].index(ci, cj, ck);
+            dv += (u[a].data()[fa + u[a].stride(a)] - u[a].data()[fa]) / g.spacing[a];
+          }
+          return dv;
+        };
+        int m[3] = {i, j, k};
+        m[c] -= 1;
+        const double hc = g.spacing[c];
+        const double divP = divergence(i, j, k), divM = divergence(m[0], m[1], m[2]);
+        const double dP = (U[f + su[c]] - U[f]) / hc, dM = (U[f] - U[f - su[c]]) / hc;
+        double T = (E[cc] * (dP - 2.0 / 3.0 * divP) - E[cm] * (dM - 2.0 / 3.0 * divM)) / hc;
+        for (int d = 0; d < dims; ++d) {
+          if (d == c) continue;
+          const double* V = u[d].data().data();
+          const std::ptrdiff_t vc = u[d].stride(c), vd = u[d].stride(d);
+          const std::size_t idc = d0[d] + i, idm = idc - vc;
+          const double gp = (V[idc + vd] - V[idm + vd]) / hc;
+          const double gm = (V[idc] - V[idm]) / hc;
+          const double ep = 0.25 * (E[cc] + E[cm] + E[cc + se[d]] + E[cm + se[d]]);
+          const double em = 0.25 * (E[cc] + E[cm] + E[cc - se[d]] + E[cm - se[d]]);
+          T += (ep * gp - em * gm) / g.spacing[d];
+        }
+        N -= mu * T;
+      }
       O[f] = N;
     }
   });
@@ -84,6 +118,28 @@ void helmholtzKernel(const Field& x, std::vector<double>& y, const std::vector<s
     sx[d] = x.stride(d);
     se[d] = eps.stride(d);
     w[d] = mu / (g.spacing[d] * g.spacing[d]);
+  }
+  if constexpr (UNIFORM) {
+    if (!jacobiDiagonal) {
+      // eps = 1, K = 0: constant-coefficient stencil written as one branch-free expression
+      // per line (vectorises).
+      const double diag = timeCoeff + 2.0 * (w[0] + w[1] + (dims == 3 ? w[2] : 0.0));
+      const double wz = dims == 3 ? w[2] : 0.0;
+      parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
+        const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
+        const std::size_t f0 = x.index(0, j, k);
+        const double* Xl = X + f0;
+        double* Yl = Y + f0;
+        const std::uint8_t* Ml = mask.data() + f0;
+        const std::ptrdiff_t sy = sx[1], sz = sx[2];
+        for (int i = 0; i < pts[0]; ++i) {
+          const double v = diag * Xl[i] - w[0] * (Xl[i + 1] + Xl[i - 1]) - w[1] * (Xl[i + sy] + Xl[i - sy]) -
+                           wz * (Xl[i + sz] + Xl[i - sz]);
+          Yl[i] = Ml[i] ? v : Yl[i];
+        }
+      });
+      return;
+    }
   }
   parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
     const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
@@ -114,6 +170,52 @@ void helmholtzKernel(const Field& x, std::vector<double>& y, const std::vector<s
   });
 }
 
+/// One Jacobi sweep for eps = 1, K = 0 fused with the residual: y = x + D^-1 (b - A x) at the
+/// unknown faces (y = x elsewhere); returns |b - A x|^2 summed line by line in line order
+/// (deterministic). x must have its ghosts filled.
+double jacobiSweepUniform(const Field& x, Field& y, const double* B, const double* invD,
+                          const std::vector<std::uint8_t>& mask, double mu, double timeCoeff, int dims,
+                          std::vector<double>& linePartial) {
+  const CartesianGrid& g = x.grid();
+  const auto& pts = x.points();
+  double w[3];
+  for (int d = 0; d < 3; ++d) w[d] = mu / (g.spacing[d] * g.spacing[d]);
+  const double wz = dims == 3 ? w[2] : 0.0;
+  const double diag = timeCoeff + 2.0 * (w[0] + w[1] + wz);
+  const std::ptrdiff_t sy = x.stride(1), sz = x.stride(2);
+  const std::int64_t lines = static_cast<std::int64_t>(pts[1]) * pts[2];
+  linePartial.resize(static_cast<std::size_t>(lines));
+  const double* X = x.data().data();
+  double* Y = y.data().data();
+  parallelFor(lines, [&](std::int64_t line) {
+    const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
+    const std::size_t f0 = x.index(0, j, k);
+    const double* Xl = X + f0;
+    double* Yl = Y + f0;
+    const double* Bl = B + f0;
+    const double* Dl = invD + f0;
+    const std::uint8_t* Ml = mask.data() + f0;
+    double acc0 = 0.0, acc1 = 0.0;
+    int i = 0;
+    auto body = [&](int q, double& acc) {
+      const double ax = diag * Xl[q] - w[0] * (Xl[q + 1] + Xl[q - 1]) - w[1] * (Xl[q + sy] + Xl[q - sy]) -
+                        wz * (Xl[q + sz] + Xl[q - sz]);
+      const double r = Ml[q] ? Bl[q] - ax : 0.0;
+      Yl[q] = Xl[q] + r * Dl[q];
+      acc += r * r;
+    };
+    for (; i + 2 <= pts[0]; i += 2) {
+      body(i, acc0);
+      body(i + 1, acc1);
+    }
+    for (; i < pts[0]; ++i) body(i, acc0);
+    linePartial[static_cast<std::size_t>(line)] = acc0 + acc1;
+  });
+  double sum = 0.0;
+  for (double v : linePartial) sum += v;
+  return sum;
+}
+
 }  // namespace
 
 void Solver::computeConvection(Field out[3]) const {
@@ -121,13 +223,13 @@ void Solver::computeConvection(Field out[3]) const {
   for (int c = 0; c < dims; ++c) {
     const bool tvd = scheme_ == ConvectionScheme::VanLeer;
     if (tvd && uniformCoupling_)
-      convectionKernel<true, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, dims);
+      convectionKernel<true, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims);
     else if (tvd)
-      convectionKernel<true, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, dims);
+      convectionKernel<true, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims);
     else if (uniformCoupling_)
-      convectionKernel<false, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, dims);
+      convectionKernel<false, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims);
     else
-      convectionKernel<false, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, dims);
+      convectionKernel<false, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims);
   }
 }
 
@@ -220,6 +322,32 @@ int Solver::solveHelmholtz(int c, double dt, double g0) {
   else
     helmholtzKernel<false>(x, krylov_[6], mask, coupling_.voidFraction, coupling_.dragCoefficient, c, mu_,
                            rho_ * g0 / dt, dims, true);
+  // The quadratic no-slip closure u_g = (8 u_w - 6 u_0 + u_1)/3 adds 2 w eps to the diagonal
+  // of the rows next to walls and inlets (tangential directions): exact Jacobi diagonal.
+  for (int d = 0; d < dims; ++d) {
+    if (d == c) continue;
+    const double wd = mu_ / (grid_.spacing[d] * grid_.spacing[d]);
+    const auto& pts = x.points();
+    for (int side = 0; side < 2; ++side) {
+      const BoundaryType type = bc_.at(d, side).type;
+      if (type != BoundaryType::Wall && type != BoundaryType::Inlet) continue;
+      const int row = side == 0 ? 0 : grid_.cells[d] - 1;
+      const int b1 = (d + 1) % 3, b2 = (d + 2) % 3;
+      for (int q = 0; q < pts[b2]; ++q)
+        for (int pp = 0; pp < pts[b1]; ++pp) {
+          int idx[3];
+          idx[d] = row;
+          idx[b1] = pp;
+          idx[b2] = q;
+          const std::size_t f = x.index(idx[0], idx[1], idx[2]);
+          if (!mask[f]) continue;
+          const std::size_t cc = coupling_.voidFraction.index(idx[0], idx[1], idx[2]);
+          const double* E = coupling_.voidFraction.data().data();
+          const double epsF = uniformCoupling_ ? 1.0 : 0.5 * (E[cc] + E[cc - coupling_.voidFraction.stride(c)]);
+          invDiag[f] += 2.0 * wd * epsF;
+        }
+    }
+  }
   // Initial guess: u^n extrapolated in time, 2 u^n - u^{n-1} (second order).
   double* Uo = uOld_[c].data().data();
   double* Un = krylov_[7].data();
@@ -243,10 +371,56 @@ int Solver::solveHelmholtz(int c, double dt, double g0) {
   const double tol = momentumTolerance_ * (bnorm > 0.0 ? bnorm : 1.0);
   double rnorm = std::sqrt(dot(r, r));
   int it = 0;
+  // Strongly diagonally dominant systems (small mu dt / h^2): plain Jacobi sweeps are much
+  // cheaper than BiCGStab iterations; BiCGStab takes over if they stall.
+  double offRatio = 0.0;
+  for (int d = 0; d < dims; ++d) offRatio += 2.0 * mu_ / (grid_.spacing[d] * grid_.spacing[d]);
+  offRatio /= rho_ * g0 / dt + offRatio;
+  if (offRatio < 0.6 && uniformCoupling_) {
+    // eps = 1, K = 0: fused sweep (one pass + ghost fill per sweep), ping-pong with y.
+    const int maxSweeps = 40;
+    while (rnorm > tol && it < maxSweeps) {
+      ++it;
+      rnorm = std::sqrt(jacobiSweepUniform(x, y, B, invDiag, mask, mu_, rho_ * g0 / dt, dims, linePartial_));
+      x.data().swap(y.data());
+      fillVelocityGhosts(x, c, bc_, GhostMode::Full);
+    }
+    X = x.data().data();
+    Y = y.data().data();
+    if (rnorm > tol) {  // stalled: residual of the current iterate for BiCGStab
+      applyHelmholtz(c, x, krylov_[5], dt, g0);
+      rnorm = std::sqrt(parallelSumElements(n, [&](std::int64_t q) {
+        r[q] = mask[q] ? B[q] - t[q] : 0.0;
+        return r[q] * r[q];
+      }));
+      parallelForElements(n, [&](std::int64_t q) {
+        rhat[q] = r[q];
+        t[q] = 0.0;
+      });
+    }
+  } else if (offRatio < 0.6) {
+    const int maxSweeps = 40;
+    while (rnorm > tol && it < maxSweeps) {
+      ++it;
+      parallelForElements(n, [&](std::int64_t q) { X[q] += r[q] * invDiag[q]; });
+      fillVelocityGhosts(x, c, bc_, GhostMode::Full);
+      applyHelmholtz(c, x, krylov_[5], dt, g0);
+      const double rr = parallelSum2Elements(n, [&](std::int64_t q, double& a, double&) {
+                          r[q] = mask[q] ? B[q] - t[q] : 0.0;
+                          a += r[q] * r[q];
+                        }).first;
+      rnorm = std::sqrt(rr);
+    }
+    if (rnorm > tol)
+      parallelForElements(n, [&](std::int64_t q) {
+        rhat[q] = r[q];
+        t[q] = 0.0;
+      });
+  }
+  double rhoNew = rnorm * rnorm;  // rhat = r at the start of BiCGStab
   double rho = 1.0, alpha = 1.0, omega = 1.0;
   while (rnorm > tol && it < momentumMaxIterations_) {
     ++it;
-    const double rhoNew = dot(rhat, r);
     if (rhoNew == 0.0) break;
     const double beta = (rhoNew / rho) * (alpha / omega);
     rho = rhoNew;
@@ -257,23 +431,31 @@ int Solver::solveHelmholtz(int c, double dt, double g0) {
     fillVelocityGhosts(y, c, bc_, GhostMode::Homogeneous);
     applyHelmholtz(c, y, krylov_[3], dt, g0);
     alpha = rho / dot(rhat, v);
-    parallelForElements(n, [&](std::int64_t q) { s[q] = r[q] - alpha * v[q]; });
-    const double snorm = std::sqrt(dot(s, s));
-    if (snorm <= tol) {
+    const double ss = parallelSum2Elements(n, [&](std::int64_t q, double& a, double&) {
+                        s[q] = r[q] - alpha * v[q];
+                        Z[q] = s[q] * invDiag[q];
+                        a += s[q] * s[q];
+                      }).first;
+    if (std::sqrt(ss) <= tol) {
       parallelForElements(n, [&](std::int64_t q) { X[q] += alpha * Y[q]; });
-      rnorm = snorm;
+      rnorm = std::sqrt(ss);
       break;
     }
-    parallelForElements(n, [&](std::int64_t q) { Z[q] = s[q] * invDiag[q]; });
     fillVelocityGhosts(z, c, bc_, GhostMode::Homogeneous);
     applyHelmholtz(c, z, krylov_[5], dt, g0);
-    const double tt = dot(t, t);
-    omega = tt > 0.0 ? dot(t, s) / tt : 0.0;
-    parallelForElements(n, [&](std::int64_t q) {
+    const auto [tt, ts] = parallelSum2Elements(n, [&](std::int64_t q, double& a, double& b) {
+      a += t[q] * t[q];
+      b += t[q] * s[q];
+    });
+    omega = tt > 0.0 ? ts / tt : 0.0;
+    const auto [rr, rhr] = parallelSum2Elements(n, [&](std::int64_t q, double& a, double& b) {
       X[q] += alpha * Y[q] + omega * Z[q];
       r[q] = s[q] - omega * t[q];
+      a += r[q] * r[q];
+      b += rhat[q] * r[q];
     });
-    rnorm = std::sqrt(dot(r, r));
+    rnorm = std::sqrt(rr);
+    rhoNew = rhr;
     if (omega == 0.0) break;
   }
   fillVelocityGhosts(x, c, bc_, GhostMode::Full);

@@ -53,6 +53,8 @@ void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool,
     L.r.assign(L.cells(), 0.0);
   }
   const std::size_t N = levels_[0].cells();
+  activeCells_ = 0.0;
+  for (double v : levels_[0].invDiag) activeCells_ += v > 0.0 ? 1.0 : 0.0;
   r_.assign(N, 0.0);
   z_.assign(N, 0.0);
   p_.assign(N, 0.0);
@@ -61,6 +63,7 @@ void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool,
 
 void MultigridPoisson::buildDiagonal(PoissonLevel& L, const std::array<bool, 6>& dirichlet) const {
   L.invDiag.assign(L.cells(), 0.0);
+  L.diag.assign(L.cells(), 0.0);
   L.redBlackSafe = true;
   for (int a = 0; a < 3; ++a)
     if (L.periodic[a] && L.n[a] % 2 == 1) L.redBlackSafe = false;
@@ -81,6 +84,7 @@ void MultigridPoisson::buildDiagonal(PoissonLevel& L, const std::array<bool, 6>&
         d += (!highBoundary || L.periodic[a]) ? th : (dirichlet[2 * a + 1] ? 2.0 * th : 0.0);
       }
       L.invDiag[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * line] = d > 0.0 ? 1.0 / d : 0.0;
+      L.diag[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * line] = d;
     }
   });
 }
@@ -112,35 +116,54 @@ void MultigridPoisson::coarsen(const PoissonLevel& fine, PoissonLevel& coarse, c
   }
 }
 
-void MultigridPoisson::applyLevel(const PoissonLevel& L, const std::vector<double>& x, std::vector<double>& y) const {
+namespace {
+
+/// Neighbour coefficients and offsets of one grid line in y and z; a missing neighbour gets a
+/// zero coefficient line and offset 0, so the inner loops need no branches.
+struct LineStencil {
+  const double* tS;
+  const double* tN;
+  const double* tB;
+  const double* tT;
+  std::ptrdiff_t oS, oN, oB, oT;
+};
+
+LineStencil lineStencil(const PoissonLevel& L, int j, int k, const double* zeros) {
+  const int ny = L.n[1], nz = L.n[2];
+  const auto sy = static_cast<std::ptrdiff_t>(L.n[0]), sz = static_cast<std::ptrdiff_t>(L.n[0]) * ny;
+  const bool hasS = j > 0 || (L.periodic[1] && ny > 1), hasN = j < ny - 1 || (L.periodic[1] && ny > 1);
+  const bool hasB = k > 0 || (L.periodic[2] && nz > 1), hasT = k < nz - 1 || (L.periodic[2] && nz > 1);
+  LineStencil st;
+  st.tS = hasS ? L.T[1].data() + L.faceIndex(1, 0, j, k) : zeros;
+  st.tN = hasN ? L.T[1].data() + L.faceIndex(1, 0, j + 1, k) : zeros;
+  st.tB = hasB ? L.T[2].data() + L.faceIndex(2, 0, j, k) : zeros;
+  st.tT = hasT ? L.T[2].data() + L.faceIndex(2, 0, j, k + 1) : zeros;
+  st.oS = !hasS ? 0 : (j > 0 ? -sy : (ny - 1) * sy);
+  st.oN = !hasN ? 0 : (j < ny - 1 ? sy : -(ny - 1) * sy);
+  st.oB = !hasB ? 0 : (k > 0 ? -sz : (nz - 1) * sz);
+  st.oT = !hasT ? 0 : (k < nz - 1 ? sz : -(nz - 1) * sz);
+  return st;
+}
+
+}  // namespace
+
+void MultigridPoisson::applyLevel(const PoissonLevel& L, const std::vector<double>& xv, std::vector<double>& yv) const {
   const int nx = L.n[0], ny = L.n[1], nz = L.n[2];
-  const std::size_t sy = nx, sz = static_cast<std::size_t>(nx) * ny;
+  const std::vector<double> zeros(static_cast<std::size_t>(nx) + 1, 0.0);
   parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
     const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
     const std::size_t base = static_cast<std::size_t>(nx) * line;
+    const double* x = xv.data() + base;
+    double* y = yv.data() + base;
+    const double* diag = L.diag.data() + base;
+    const double* Tx = L.T[0].data() + L.faceIndex(0, 0, j, k);
+    const LineStencil st = lineStencil(L, j, k, zeros.data());
+    const bool perX = L.periodic[0] && nx > 1;
     for (int i = 0; i < nx; ++i) {
-      const std::size_t c = base + i;
-      if (L.invDiag[c] == 0.0) {
-        y[c] = 0.0;
-        continue;
-      }
-      double off = 0.0;
-      const double* Tx = L.T[0].data() + L.faceIndex(0, i, j, k);
-      if (i > 0) off += Tx[0] * x[c - 1];
-      else if (L.periodic[0] && nx > 1) off += Tx[0] * x[c + nx - 1];
-      if (i < nx - 1) off += Tx[1] * x[c + 1];
-      else if (L.periodic[0] && nx > 1) off += Tx[1] * x[c + 1 - nx];
-      const double tys = L.T[1][L.faceIndex(1, i, j, k)], tyn = L.T[1][L.faceIndex(1, i, j + 1, k)];
-      if (j > 0) off += tys * x[c - sy];
-      else if (L.periodic[1] && ny > 1) off += tys * x[c + (ny - 1) * sy];
-      if (j < ny - 1) off += tyn * x[c + sy];
-      else if (L.periodic[1] && ny > 1) off += tyn * x[c - (ny - 1) * sy];
-      const double tzb = L.T[2][L.faceIndex(2, i, j, k)], tzt = L.T[2][L.faceIndex(2, i, j, k + 1)];
-      if (k > 0) off += tzb * x[c - sz];
-      else if (L.periodic[2] && nz > 1) off += tzb * x[c + (nz - 1) * sz];
-      if (k < nz - 1) off += tzt * x[c + sz];
-      else if (L.periodic[2] && nz > 1) off += tzt * x[c - (nz - 1) * sz];
-      y[c] = x[c] / L.invDiag[c] - off;
+      const double off = st.tS[i] * x[i + st.oS] + st.tN[i] * x[i + st.oN] + st.tB[i] * x[i + st.oB] +
+                         st.tT[i] * x[i + st.oT] + (i > 0 ? Tx[i] * x[i - 1] : (perX ? Tx[i] * x[nx - 1] : 0.0)) +
+                         (i < nx - 1 ? Tx[i + 1] * x[i + 1] : (perX ? Tx[i + 1] * x[0] : 0.0));
+      y[i] = diag[i] * x[i] - off;
     }
   });
 }
@@ -148,37 +171,36 @@ void MultigridPoisson::applyLevel(const PoissonLevel& L, const std::vector<doubl
 // One half-sweep of red-black Gauss-Seidel over the cells with (i+j+k) % 2 == colour.
 void MultigridPoisson::smoothColour(PoissonLevel& L, int colour) const {
   const int nx = L.n[0], ny = L.n[1], nz = L.n[2];
-  const std::size_t sy = nx, sz = static_cast<std::size_t>(nx) * ny;
-  std::vector<double>& x = L.x;
-  const std::vector<double>& b = L.b;
+  std::vector<double>& xv = L.x;
+  const std::vector<double>& bv = L.b;
+  const std::vector<double> zeros(static_cast<std::size_t>(nx) + 1, 0.0);
   parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
     const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
     const std::size_t base = static_cast<std::size_t>(nx) * line;
+    double* x = xv.data() + base;
+    const double* b = bv.data() + base;
+    const double* inv = L.invDiag.data() + base;
     const double* Tx = L.T[0].data() + L.faceIndex(0, 0, j, k);
-    const double* Tys = L.T[1].data() + L.faceIndex(1, 0, j, k);
-    const double* Tyn = L.T[1].data() + L.faceIndex(1, 0, j + 1, k);
-    const double* Tzb = L.T[2].data() + L.faceIndex(2, 0, j, k);
-    const double* Tzt = L.T[2].data() + L.faceIndex(2, 0, j, k + 1);
-    const bool hasS = j > 0 || (L.periodic[1] && ny > 1), hasN = j < ny - 1 || (L.periodic[1] && ny > 1);
-    const bool hasB = k > 0 || (L.periodic[2] && nz > 1), hasT = k < nz - 1 || (L.periodic[2] && nz > 1);
-    const std::ptrdiff_t offS = j > 0 ? -static_cast<std::ptrdiff_t>(sy) : static_cast<std::ptrdiff_t>((ny - 1) * sy);
-    const std::ptrdiff_t offN = j < ny - 1 ? static_cast<std::ptrdiff_t>(sy) : -static_cast<std::ptrdiff_t>((ny - 1) * sy);
-    const std::ptrdiff_t offB = k > 0 ? -static_cast<std::ptrdiff_t>(sz) : static_cast<std::ptrdiff_t>((nz - 1) * sz);
-    const std::ptrdiff_t offT = k < nz - 1 ? static_cast<std::ptrdiff_t>(sz) : -static_cast<std::ptrdiff_t>((nz - 1) * sz);
+    const LineStencil st = lineStencil(L, j, k, zeros.data());
     const bool perX = L.periodic[0] && nx > 1;
-    for (int i = (j + k + colour) & 1; i < nx; i += 2) {
-      const std::size_t c = base + i;
-      double s = b[c];
-      if (i > 0) s += Tx[i] * x[c - 1];
-      else if (perX) s += Tx[i] * x[c + nx - 1];
-      if (i < nx - 1) s += Tx[i + 1] * x[c + 1];
-      else if (perX) s += Tx[i + 1] * x[c + 1 - nx];
-      if (hasS) s += Tys[i] * x[c + offS];
-      if (hasN) s += Tyn[i] * x[c + offN];
-      if (hasB) s += Tzb[i] * x[c + offB];
-      if (hasT) s += Tzt[i] * x[c + offT];
-      x[c] = s * L.invDiag[c];
+    auto yz = [&](int i) {
+      return st.tS[i] * x[i + st.oS] + st.tN[i] * x[i + st.oN] + st.tB[i] * x[i + st.oB] + st.tT[i] * x[i + st.oT];
+    };
+    auto relaxEdge = [&](int i) {
+      double s = b[i] + yz(i);
+      if (i > 0) s += Tx[i] * x[i - 1];
+      else if (perX) s += Tx[i] * x[nx - 1];
+      if (i < nx - 1) s += Tx[i + 1] * x[i + 1];
+      else if (perX) s += Tx[i + 1] * x[0];
+      x[i] = s * inv[i];
+    };
+    int i = (j + k + colour) & 1;
+    if (i == 0) {
+      relaxEdge(0);
+      i = 2;
     }
+    for (; i < nx - 1; i += 2) x[i] = (b[i] + yz(i) + Tx[i] * x[i - 1] + Tx[i + 1] * x[i + 1]) * inv[i];
+    if (i == nx - 1) relaxEdge(i);
   });
 }
 
@@ -280,7 +302,7 @@ void MultigridPoisson::precondition(const std::vector<double>& r, std::vector<do
 void MultigridPoisson::removeMean(std::vector<double>& v) const {
   const PoissonLevel& L = levels_[0];
   const auto n = static_cast<std::int64_t>(v.size());
-  const double count = parallelSumElements(n, [&](std::int64_t i) { return L.invDiag[i] > 0.0 ? 1.0 : 0.0; });
+  const double count = activeCells_;
   if (count == 0.0) return;
   const double mean = parallelSumElements(n, [&](std::int64_t i) { return L.invDiag[i] > 0.0 ? v[i] : 0.0; }) / count;
   parallelForElements(n, [&](std::int64_t i) { v[i] = L.invDiag[i] > 0.0 ? v[i] - mean : 0.0; });

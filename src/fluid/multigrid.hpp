@@ -24,6 +24,7 @@ struct PoissonLevel {
   std::array<bool, 3> periodic{false, false, false};
   std::array<std::vector<double>, 3> T;  // face transmissibilities, (n_a + 1) along axis a
   std::vector<double> invDiag;           // 1 / diagonal, 0 for cells without any coupling
+  std::vector<double> diag;              // diagonal
   std::vector<double> x, b, r;           // solution, right-hand side, residual
   bool redBlackSafe = true;              // colouring is a proper 2-colouring (no odd periodic axis)
 
@@ -71,6 +72,7 @@ class MultigridPoisson {
   std::vector<std::array<int, 3>> factors_;  // coarsening factor from level l to l+1
   std::array<bool, 6> dirichlet_{};
   bool singular_ = true;
+  double activeCells_ = 0.0;  // fine cells with a non-zero diagonal
   std::vector<double> r_, z_, p_, q_;
 };
 

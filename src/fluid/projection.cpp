@@ -176,7 +176,7 @@ void Solver::project(double dt, double g0) {
     const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
     for (int i = 0; i < nx; ++i) {
       const std::size_t id = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * line;
-      poissonX_[id] = 0.0;
+      if (blocked(i, j, k)) poissonX_[id] = 0.0;  // otherwise: previous increment as initial guess
       if (blocked(i, j, k)) {
         poissonRhs_[id] = 0.0;
         continue;
@@ -193,6 +193,35 @@ void Solver::project(double dt, double g0) {
       poissonRhs_[id] = -net;
     }
   });
+  // Pressure outlets: phi_b = p_out - p^n_b with p^n_b the interior pressure extrapolated
+  // linearly to the boundary, so that at convergence the pressure meets p_out there.
+  auto forOutletCells = [&](auto&& body) {
+    for (int a = 0; a < dims; ++a)
+      for (int s = 0; s < 2; ++s) {
+        if (bc_.at(a, s).type != BoundaryType::PressureOutlet) continue;
+        const int n = grid_.cells[a], b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+        for (int q = 0; q < grid_.cells[b2]; ++q)
+          for (int p = 0; p < grid_.cells[b1]; ++p) {
+            int cell[3];
+            cell[a] = s == 0 ? 0 : n - 1;
+            cell[b1] = p;
+            cell[b2] = q;
+            if (blocked(cell[0], cell[1], cell[2])) continue;
+            const std::size_t cc = p_.index(cell[0], cell[1], cell[2]);
+            const std::ptrdiff_t inward = (s == 0 ? 1 : -1) * p_.stride(a);
+            const double pb = n >= 2 ? 1.5 * p_.data()[cc] - 0.5 * p_.data()[cc + inward] : p_.data()[cc];
+            const std::size_t face = s == 0 ? cc : cc + p_.stride(a);  // cell index of the face's + side
+            body(cell, cc, face, inward, bc_.at(a, s).pressure - pb, a);
+          }
+      }
+  };
+  forOutletCells([&](const int* cell, std::size_t, std::size_t face, std::ptrdiff_t, double phiB, int a) {
+    const double areaOverH = grid_.cellVolume() / (grid_.spacing[a] * grid_.spacing[a]);
+    const double epsF = avg(E, face, p_.stride(a));
+    const double T = epsF * correctionCoeff(a, face) * areaOverH;
+    poissonRhs_[static_cast<std::size_t>(cell[0]) + static_cast<std::size_t>(nx) * (cell[1] + static_cast<std::size_t>(ny) * cell[2])] +=
+        2.0 * T * phiB;
+  });
   const PoissonResult res = poisson_.solve(poissonX_, poissonRhs_, pressureTolerance_, pressureMaxIterations_);
   stats_.pressureIterations = res.iterations;
   stats_.pressureResidual = res.relativeResidual;
@@ -201,6 +230,9 @@ void Solver::project(double dt, double g0) {
     for (int i = 0; i < nx; ++i) phi_(i, j, k) = poissonX_[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * line];
   });
   fillCellGhosts(phi_, bc_, CellGhostKind::PressureIncrement);
+  forOutletCells([&](const int*, std::size_t cc, std::size_t, std::ptrdiff_t inward, double phiB, int) {
+    phi_.data()[cc - inward] = 2.0 * phiB - phi_.data()[cc];
+  });
   const double* Phi = phi_.data().data();
   for (int a = 0; a < dims; ++a) {
     Field& u = u_[a];

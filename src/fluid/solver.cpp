@@ -171,6 +171,7 @@ void Solver::fillAllGhosts() {
 }
 
 void Solver::setVelocity(const std::function<Vec3(const Vec3&)>& f) {
+  healthCheckedAt_ = -1;
   for (int c = 0; c < 3; ++c) {
     Field& u = u_[c];
     const auto& pts = u.points();
@@ -202,6 +203,7 @@ void Solver::setVelocity(const std::function<Vec3(const Vec3&)>& f) {
 }
 
 void Solver::setPressure(const std::function<double(const Vec3&)>& f) {
+  healthCheckedAt_ = -1;
   for (int k = 0; k < grid_.cells[2]; ++k)
     for (int j = 0; j < grid_.cells[1]; ++j)
       for (int i = 0; i < grid_.cells[0]; ++i) p_(i, j, k) = f(grid_.cellCentre(i, j, k));
@@ -209,6 +211,7 @@ void Solver::setPressure(const std::function<double(const Vec3&)>& f) {
 }
 
 void Solver::setScalar(const std::function<double(const Vec3&)>& f) {
+  healthCheckedAt_ = -1;
   for (int k = 0; k < grid_.cells[2]; ++k)
     for (int j = 0; j < grid_.cells[1]; ++j)
       for (int i = 0; i < grid_.cells[0]; ++i) scalar_(i, j, k) = f(grid_.cellCentre(i, j, k));
@@ -326,6 +329,9 @@ std::vector<NamedCellField> Solver::cellFields() const {
 }
 
 void Solver::checkHealth(long long step, double time) const {
+  // The fluid changes only in step(): one scan per fluid step is enough (the app may call this
+  // after every DEM substep).
+  if (healthCheckedAt_ == steps_) return;
   auto fail = [&](const std::string& quantity, int i, int j, int k, const Vec3& x, const std::string& detail) {
     throw DivergenceError(step, time, quantity, fmt::format("fluid cell ({}, {}, {})", i, j, k), x, detail);
   };
@@ -361,6 +367,7 @@ void Solver::checkHealth(long long step, double time) const {
                  fmt::format("CFL {:.3g} > cfl_limit {:.3g} with dt = {:.3g} s", cfl, cflLimit_, lastDt_));
         }
       }
+  healthCheckedAt_ = steps_;
 }
 
 void Solver::save(BinaryWriter& out) const {
@@ -384,6 +391,7 @@ void Solver::save(BinaryWriter& out) const {
   out.putVector(coupling_.voidFraction.data());
   out.putVector(coupling_.voidFractionOld.data());
   out.putVector(coupling_.dragCoefficient.data());
+  out.putVector(poissonX_);  // last pressure increment: initial guess of the next solve
 }
 
 void Solver::load(BinaryReader& in) {
@@ -414,7 +422,11 @@ void Solver::load(BinaryReader& in) {
   readInto(coupling_.voidFraction);
   readInto(coupling_.voidFractionOld);
   readInto(coupling_.dragCoefficient);
+  auto guess = in.getVector<double>();
+  if (guess.size() != poissonX_.size()) throw CheckpointError("fluid checkpoint: pressure increment size mismatch");
+  poissonX_ = std::move(guess);
   poissonKey_ = -1.0;
+  healthCheckedAt_ = -1;
 }
 
 }  // namespace gf::fluid

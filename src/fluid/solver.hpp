@@ -141,6 +141,7 @@ class Solver {
   std::vector<std::int64_t> unknownList_[3];
   std::vector<double> krylov_[8];  // r, rhat, p, v, s, t, 1/diag, u^n
   Field precY_[3], precZ_[3];
+  std::vector<double> linePartial_;  // per-line partial sums (deterministic reductions)
   MultigridPoisson poisson_;
   double poissonKey_ = -1.0;  // rho gamma0 / dt of the current multigrid setup (-1: rebuild)
   bool uniformCoupling_ = true;
@@ -148,6 +149,7 @@ class Solver {
 
   double time_ = 0.0, dtPrev_ = 0.0, lastDt_ = 0.0;
   long long steps_ = 0;
+  mutable long long healthCheckedAt_ = -1;  // steps_ at the last complete health scan
   StepStatistics stats_;
   PhaseTimers timers_;
 };

@@ -221,3 +221,15 @@ TEST(BadInput, CommandLineUsage) {
   EXPECT_EQ(grainflow("frobnicate").exitCode, 2);
   EXPECT_EQ(grainflow("run x.yaml --threads -3").exitCode, 2);
 }
+
+TEST(BadInput, OverlappingWallsBoxAndFloor) {
+  // A box already has a floor at z = 0; a second plane there would push particles twice.
+  expectCheckFails(replaced("    normal: [0.0, 0.0, 1.0]\n",
+                            "    normal: [0.0, 0.0, 1.0]\n  - {type: box, min: [0.0, 0.0, 0.0], max: [0.02, 0.02, 0.05]}\n"),
+                   {1, {"walls[1].type", "already has one", "walls that do not overlap"}});
+}
+
+TEST(BadInput, FacingWallsWithNoRoomBetween) {
+  expectCheckFails(replaced("    normal: [0.0, 0.0, 1.0]\n", "    normal: [0.0, 0.0, 1.0]\n  - type: plane\n    point: [0.0, 0.0, -0.01]\n    normal: [0.0, 0.0, -1.0]\n"),
+                   {1, {"walls[1].type", "faces wall", "they overlap"}});
+}

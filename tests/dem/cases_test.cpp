@@ -60,8 +60,8 @@ INSTANTIATE_TEST_SUITE_P(Cases, DemCaseFiles,
 TEST(DemCases, HopperDischargeMatchesBeverlooWithinFifteenPercent) {
   LoadedCase c("dem_hopper_discharge.yaml");
   System& s = *c.system;
-  const double d = 0.003, orifice = 0.018, siloRadius = 0.03, rho = 2500.0, g = 9.81;
-  while (s.time() < 0.24) s.step(c.dt);
+  const double d = 0.003, orifice = 0.021, siloRadius = 0.03, rho = 2500.0, g = 9.81;
+  while (s.time() < 0.29) s.step(c.dt);
   // Bulk density of the settled bed from a slab well inside it.
   double solid = 0.0, top = 0.0;
   for (std::size_t i = 0; i < s.particles().size(); ++i) top = std::max(top, s.particles().position[i].z);
@@ -73,10 +73,10 @@ TEST(DemCases, HopperDischargeMatchesBeverlooWithinFifteenPercent) {
   }
   const double bulkDensity = rho * solid / (std::numbers::pi * siloRadius * siloRadius * (z1 - z0));
   const double beverloo = 0.58 * bulkDensity * std::sqrt(g) * std::pow(orifice - 1.5 * d, 2.5);
-  // Steady discharge (plug gone at 0.25 s, fall to the bin about 0.08 s): 0.4 s to 0.6 s.
-  while (s.time() < 0.4) s.step(c.dt);
+  // Steady discharge (plug gone at 0.3 s, fall to the bin about 0.08 s): 0.42 s to 0.62 s.
+  while (s.time() < 0.42) s.step(c.dt);
   const double m0 = s.outlets()[0].removedMass;
-  while (s.time() < 0.6) s.step(c.dt);
+  while (s.time() < 0.62) s.step(c.dt);
   const double rate = (s.outlets()[0].removedMass - m0) / 0.2;
   std::printf("[ hopper ] bulk density %.0f kg/m^3, discharge %.4f kg/s, Beverloo (C=0.58, k=1.5) %.4f kg/s\n",
               bulkDensity, rate, beverloo);

@@ -160,3 +160,32 @@ walls:
 
 }  // namespace
 }  // namespace gf::dem
+
+namespace gf::dem {
+namespace {
+
+// A bed settled on a floor in a box periodic in x and y: the floor (wall load) carries the whole
+// weight once the bed is at rest (no side walls, so no Janssen wall friction).
+TEST(DemWalls, SettledPeriodicBedFloorCarriesItsWeight) {
+  const std::string yaml = test::materialsYaml("hertz_mindlin", 0.3, 0.5) + R"(
+domain: {min: [0, 0, 0], max: [0.012, 0.012, 0.04], periodic: [1, 1, 0]}
+walls:
+  - {type: plane, name: floor, point: [0, 0, 0], normal: [0, 0, 1]}
+insertion:
+  - {type: random_packing, min: [0, 0, 0.0], max: [0.012, 0.012, 0.035], count: 300, seed: 6,
+     size: {distribution: rosin_rammler, characteristic_diameter: 0.002, spread: 5, min_diameter: 0.0016,
+            max_diameter: 0.0024}}
+)";
+  test::DemCase c(yaml, {0, 0, -9.81});
+  double weight = 0.0;
+  for (double m : c->particles().mass) weight += 9.81 * m;
+  for (int k = 0; k < 30000; ++k) c->step(1e-5);
+  const double floorForce = -c->wallLoads()[0].force.z;
+  EXPECT_NEAR(floorForce, weight, 0.02 * weight);
+  EXPECT_LT(c->energy().translational, 1e-4 * weight * 0.001);  // at rest: KE << m g d
+  EXPECT_GT(c->contactStatistics().coordinationNumber, 3.5);   // packed (isostatic ~4-6)
+  EXPECT_NO_THROW(c->checkHealth(30000, 0.3));
+}
+
+}  // namespace
+}  // namespace gf::dem

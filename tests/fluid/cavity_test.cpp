@@ -70,7 +70,7 @@ CavityResult runCavity(int n, double reynolds, double endTime, const std::array<
 bool longRuns() { return std::getenv("GF_FLUID_LONG") != nullptr; }
 
 TEST(Cavity, Re100On64MatchesGhia) {
-  const auto r = runCavity(64, 100.0, 25.0, ghia::kURe100, ghia::kVRe100);
+  const auto r = runCavity(64, 100.0, 10.0, ghia::kURe100, ghia::kVRe100);
   EXPECT_LT(r.uDeviation, 0.015);
   EXPECT_LT(r.vDeviation, 0.015);
 }

@@ -20,6 +20,7 @@ struct Material {
   double density = 2500.0;     // kg/m^3
   double youngsModulus = 1e7;  // Pa
   double poissonRatio = 0.3;   // -
+  bool isBuiltInRigid = false;  // the 'rigid' wall material added when the case defines none
   // Optional per-material interaction values (NaN = not given); a pair uses the mean of its two
   // materials' values where given, else the `contact` default, unless `contact.pairs` sets it.
   double restitution = std::numeric_limits<double>::quiet_NaN();

@@ -79,6 +79,15 @@ PairProperties materialPair(const Material& a, const Material& b, const PairProp
 
 }  // namespace
 
+void ContactTable::addRigidMaterial() {
+  if (materialIndex(kRigidMaterial) >= 0) return;  // the case defines its own
+  Material rigid;
+  rigid.name = kRigidMaterial;
+  rigid.isBuiltInRigid = true;
+  rigid.youngsModulus = std::numeric_limits<double>::infinity();  // E* = E_p / (1 - nu_p^2)
+  materials_.push_back(rigid);
+}
+
 int ContactTable::materialIndex(const std::string& name) const {
   for (std::size_t m = 0; m < materials_.size(); ++m)
     if (materials_[m].name == name) return static_cast<int>(m);
@@ -92,14 +101,16 @@ int ContactTable::readMaterial(Params& p, const Key& k, const std::string& defau
   const int index = materialIndex(name);
   if (index < 0) {
     std::string valid;
-    for (const Material& m : materials_) valid += (valid.empty() ? "" : ", ") + m.name;
-    p.fail(k.name, "'" + name + "'", "one of the materials: " + valid);
+    for (const Material& m : materials_)
+      if (m.name != kRigidMaterial || !m.isBuiltInRigid) valid += (valid.empty() ? "" : ", ") + m.name;
+    p.fail(k.name, "'" + name + "'", "one of the materials: " + valid + " (walls may also use 'rigid')");
   }
   return index;
 }
 
 ContactTable::ContactTable(Params& root) {
   materials_ = readMaterials(root);
+  addRigidMaterial();
   count_ = static_cast<int>(materials_.size());
   Params c = root.section({"contact", "-", "contact model (laws by name) and per-pair interaction parameters"});
   lawModel_ = Registry<ContactLawModel>::instance().create(
@@ -144,6 +155,7 @@ void ContactTable::configure(std::vector<Material> materials, NormalLaw law, Rol
                              CohesionLaw cohesion, const PairProperties& allPairs, double hookeStiffness,
                              double rollingDamping) {
   materials_ = std::move(materials);
+  addRigidMaterial();
   count_ = static_cast<int>(materials_.size());
   normalLaw_ = law;
   rollingLaw_ = rolling;

@@ -10,6 +10,9 @@
 
 namespace gf::dem {
 
+/// Name of the built-in rigid wall material (infinite E; default for walls without `material`).
+inline constexpr const char* kRigidMaterial = "rigid";
+
 class ContactTable {
  public:
   ContactTable() = default;
@@ -36,6 +39,7 @@ class ContactTable {
 
  private:
   void computePair(int a, int b, const PairProperties& p);
+  void addRigidMaterial();
   std::vector<Material> materials_;
   std::vector<PairCoefficients> table_;
   int count_ = 0;
