@@ -50,20 +50,11 @@ void Solver::balanceOutflow(double dt) {
       anyOutflow = anyOutflow || t == BoundaryType::Outflow;
       anyPressure = anyPressure || t == BoundaryType::PressureOutlet;
       Field& u = u_[a];
-      const int n = grid_.cells[a];
-      const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
-      for (int q = 0; q < grid_.cells[b2]; ++q)
-        for (int p = 0; p < grid_.cells[b1]; ++p) {
-          int idx[3];
-          idx[a] = s == 0 ? 0 : n;
-          idx[b1] = p;
-          idx[b2] = q;
-          int cell[3] = {idx[0], idx[1], idx[2]};
-          if (s == 1) cell[a] = n - 1;
-          const std::size_t f = u.index(idx[0], idx[1], idx[2]);
-          const std::ptrdiff_t st = u.stride(a);
-          u.data()[f] = blocked(cell[0], cell[1], cell[2]) ? 0.0 : u.data()[s == 0 ? f + st : f - st];
-        }
+      forEachBoundaryFace(a, s, [&](const int* face, const int* cell) {
+        const std::size_t f = u.index(face[0], face[1], face[2]);
+        const std::ptrdiff_t st = u.stride(a);
+        u.data()[f] = blocked(cell[0], cell[1], cell[2]) ? 0.0 : u.data()[s == 0 ? f + st : f - st];
+      });
     }
   if (!anyOutflow || anyPressure) return;
   // Zero-gradient outlets only: shift the outflow velocity so that mass is conserved globally
@@ -77,23 +68,14 @@ void Solver::balanceOutflow(double dt) {
   for (int a = 0; a < (twoD_ ? 2 : 3); ++a) {
     if (bc_.periodic(a)) continue;
     const double area = grid_.cellVolume() / grid_.spacing[a];
-    const int n = grid_.cells[a];
-    const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
     for (int s = 0; s < 2; ++s) {
       const bool out = bc_.at(a, s).type == BoundaryType::Outflow;
-      for (int q = 0; q < grid_.cells[b2]; ++q)
-        for (int p = 0; p < grid_.cells[b1]; ++p) {
-          int idx[3];
-          idx[a] = s == 0 ? 0 : n;
-          idx[b1] = p;
-          idx[b2] = q;
-          int cell[3] = {idx[0], idx[1], idx[2]};
-          if (s == 1) cell[a] = n - 1;
-          const double epsF = E[coupling_.voidFraction.index(cell[0], cell[1], cell[2])];
-          const double outward = (s == 0 ? -1.0 : 1.0) * u_[a](idx[0], idx[1], idx[2]);
-          net += epsF * outward * area;
-          if (out && !blocked(cell[0], cell[1], cell[2])) outflowArea += epsF * area;
-        }
+      forEachBoundaryFace(a, s, [&](const int* face, const int* cell) {
+        const double epsF = E[coupling_.voidFraction.index(cell[0], cell[1], cell[2])];
+        const double outward = (s == 0 ? -1.0 : 1.0) * u_[a](face[0], face[1], face[2]);
+        net += epsF * outward * area;
+        if (out && !blocked(cell[0], cell[1], cell[2])) outflowArea += epsF * area;
+      });
     }
   }
   if (outflowArea <= 0.0) return;
@@ -101,18 +83,9 @@ void Solver::balanceOutflow(double dt) {
   for (int a = 0; a < (twoD_ ? 2 : 3); ++a)
     for (int s = 0; s < 2; ++s) {
       if (bc_.at(a, s).type != BoundaryType::Outflow) continue;
-      const int n = grid_.cells[a];
-      const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
-      for (int q = 0; q < grid_.cells[b2]; ++q)
-        for (int p = 0; p < grid_.cells[b1]; ++p) {
-          int idx[3];
-          idx[a] = s == 0 ? 0 : n;
-          idx[b1] = p;
-          idx[b2] = q;
-          int cell[3] = {idx[0], idx[1], idx[2]};
-          if (s == 1) cell[a] = n - 1;
-          if (!blocked(cell[0], cell[1], cell[2])) u_[a](idx[0], idx[1], idx[2]) += (s == 0 ? -shift : shift);
-        }
+      forEachBoundaryFace(a, s, [&](const int* face, const int* cell) {
+        if (!blocked(cell[0], cell[1], cell[2])) u_[a](face[0], face[1], face[2]) += (s == 0 ? -shift : shift);
+      });
     }
 }
 

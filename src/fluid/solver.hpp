@@ -103,6 +103,23 @@ class Solver {
   void assembleMomentum(int c, double dt, double gamma0, double gamma1, double gamma2, double ext1, double ext2);
   int solveHelmholtz(int c, double dt, double gamma0);
   void applyHelmholtz(int c, const Field& x, std::vector<double>& y, double dt, double gamma0) const;
+  /// Calls body(face, cell) for every face of boundary side s (0 = min, 1 = max) normal to axis a:
+  /// face = (i, j, k) of the normal-velocity face, cell = the interior cell next to it.
+  template <class Body>
+  void forEachBoundaryFace(int a, int s, Body&& body) const {
+    const int n = grid_.cells[a];
+    const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+    for (int q = 0; q < grid_.cells[b2]; ++q)
+      for (int p = 0; p < grid_.cells[b1]; ++p) {
+        int face[3];
+        face[a] = s == 0 ? 0 : n;
+        face[b1] = p;
+        face[b2] = q;
+        int cell[3] = {face[0], face[1], face[2]};
+        if (s == 1) cell[a] = n - 1;
+        body(static_cast<const int*>(face), static_cast<const int*>(cell));
+      }
+  }
   // projection.cpp
   void balanceOutflow(double dt);
   void project(double dt, double gamma0);
