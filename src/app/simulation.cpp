@@ -321,6 +321,16 @@ void Simulation::sampleMonitors(bool force) {
   }
 }
 
+void Simulation::saveGoodState() {
+  // Only a state that passed the health check becomes a checkpoint: after a divergence the last
+  // checkpoint is still a good one.
+  checkHealth();
+  ScopedPhase timer(appTimers_, Phase::Output);
+  writeCheckpoint(checkpointPath());
+  lastCheckpoint_ = checkpointPath();
+  flushMonitors();
+}
+
 void Simulation::flushMonitors() const {
   for (const MonitorSlot& m : monitors_) m.series.flush();
 }
@@ -344,27 +354,17 @@ RunStatus Simulation::run() {
     sampleMonitors(false);
     if (settings_.outputInterval > 0.0 && time() + outputTolerance >= nextOutputTime_) writeOutput();
     if (nextCheckpointStep > 0 && step_ >= nextCheckpointStep) {
-      checkHealth();
-      ScopedPhase timer(appTimers_, Phase::Output);
-      writeCheckpoint(checkpointPath());
-      flushMonitors();
-      lastCheckpoint_ = checkpointPath();
+      saveGoodState();
       nextCheckpointStep += settings_.checkpointInterval;
     }
     if (pendingSignal() != 0) {
-      checkHealth();
-      writeCheckpoint(checkpointPath());
-      lastCheckpoint_ = checkpointPath();
-      flushMonitors();
+      saveGoodState();
       progress.finish(time());
       return RunStatus::Interrupted;
     }
     progress.update(time(), step_);
   }
-  checkHealth();
-  writeCheckpoint(checkpointPath());
-  lastCheckpoint_ = checkpointPath();
-  flushMonitors();
+  saveGoodState();
   progress.finish(time());
   return RunStatus::Finished;
 }

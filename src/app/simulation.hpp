@@ -95,6 +95,8 @@ class Simulation {
   void writeOutput();
   void sampleMonitors(bool force);
   void flushMonitors() const;
+  /// Health check, checkpoint, monitor files: the state a restart or a divergence falls back to.
+  void saveGoodState();
   void checkHealth() const;
   void checkTimeStep(Params& root);
   coupling::FluidView fluidView();
