@@ -429,12 +429,10 @@ std::string Params::choice(const Key& k, const std::vector<std::string>& allowed
 
 // ---------------------------------------------------------------- nesting
 
-Params Params::childParams(const Key& k, const YAML::Node& node, const std::string& childPrefix, bool isList) {
+Params Params::childParams(const YAML::Node& node, const std::string& childPrefix) {
   auto child = std::make_shared<Section>();
   child->node = node;
   child->prefix = childPrefix;
-  (void)k;
-  (void)isList;
   return Params(shared_, child);
 }
 
@@ -442,12 +440,12 @@ Params Params::section(const Key& k) {
   markQueried(k.name);
   if (documenting()) {
     document(k, "section", "optional", "map");
-    return childParams(k, YAML::Node(), path(k.name), false);
+    return childParams(YAML::Node(), path(k.name));
   }
   const YAML::Node* n = find(k.name);
-  if (n == nullptr || n->IsNull()) return childParams(k, YAML::Node(YAML::NodeType::Undefined), path(k.name), false);
+  if (n == nullptr || n->IsNull()) return childParams(YAML::Node(YAML::NodeType::Undefined), path(k.name));
   if (!n->IsMap()) fail(k.name, describeNode(*n), "a map of keys (section '" + std::string(k.name) + "')");
-  return childParams(k, *n, path(k.name), false);
+  return childParams(*n, path(k.name));
 }
 
 Params Params::requiredSection(const Key& k) {
@@ -463,7 +461,7 @@ std::vector<Params> Params::list(const Key& k) {
   markQueried(k.name);
   if (documenting()) {
     document(k, "list", "[]", "list of maps");
-    return {childParams(k, YAML::Node(), path(k.name) + "[]", true)};
+    return {childParams(YAML::Node(), path(k.name) + "[]")};
   }
   const YAML::Node* n = find(k.name);
   std::vector<Params> out;
@@ -474,7 +472,7 @@ std::vector<Params> Params::list(const Key& k) {
     const YAML::Node item = seq[i];
     const std::string itemPath = fmt::format("{}[{}]", path(k.name), i);
     if (!item.IsMap()) throw CaseError(locationOf(shared_->file, item), itemPath, describeNode(item), "a map of keys");
-    out.push_back(childParams(k, item, itemPath, true));
+    out.push_back(childParams(item, itemPath));
   }
   return out;
 }

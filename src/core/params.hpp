@@ -132,7 +132,7 @@ class Params {
   struct Shared;
   struct Section;
   Params(std::shared_ptr<Shared> shared, std::shared_ptr<Section> section);
-  Params childParams(const Key& k, const YAML::Node& node, const std::string& childPrefix, bool isList);
+  Params childParams(const YAML::Node& node, const std::string& childPrefix);
   const YAML::Node* find(std::string_view key) const;
   /// Common path of the value readers: marks the key as known; in documentation mode documents it
   /// and returns nullptr; otherwise returns the key's node, or records the default and returns
