@@ -175,25 +175,27 @@ TEST(BadInput, RefusesToOverwriteAnotherRun) {
   EXPECT_EQ(grainflow("run " + file + " --quiet --overwrite --output " + out).exitCode, 0);
 }
 
-TEST(BadInput, CorruptCheckpoint) {
+/// Runs the valid case, damages its checkpoint with `damage` and restarts from the damaged copy.
+template <class Damage>
+gf::testing::CommandResult restartFromDamagedCheckpoint(Damage damage) {
   TempDir dir;
   const std::string file = dir.write("case.yaml", kValidCase);
-  ASSERT_EQ(grainflow("run " + file + " --quiet --output " + dir.file("out")).exitCode, 0);
+  EXPECT_EQ(grainflow("run " + file + " --quiet --output " + dir.file("out")).exitCode, 0);
   std::string bytes = gf::testing::readAll(dir.file("out/checkpoint.bin"));
-  bytes[bytes.size() / 2] ^= 0x5A;
-  dir.write("corrupt.bin", bytes);
-  const auto r = grainflow("run " + file + " --quiet --output " + dir.file("out") + " --restart " + dir.file("corrupt.bin"));
+  EXPECT_GT(bytes.size(), 200u);
+  damage(bytes);
+  dir.write("damaged.bin", bytes);
+  return grainflow("run " + file + " --quiet --output " + dir.file("out") + " --restart " + dir.file("damaged.bin"));
+}
+
+TEST(BadInput, CorruptCheckpoint) {
+  const auto r = restartFromDamagedCheckpoint([](std::string& bytes) { bytes[bytes.size() / 2] ^= 0x5A; });
   EXPECT_EQ(r.exitCode, 4) << r.output;
   EXPECT_NE(r.output.find("checksum mismatch"), std::string::npos) << r.output;
 }
 
 TEST(BadInput, TruncatedCheckpoint) {
-  TempDir dir;
-  const std::string file = dir.write("case.yaml", kValidCase);
-  ASSERT_EQ(grainflow("run " + file + " --quiet --output " + dir.file("out")).exitCode, 0);
-  const std::string bytes = gf::testing::readAll(dir.file("out/checkpoint.bin"));
-  dir.write("short.bin", bytes.substr(0, bytes.size() - 100));
-  const auto r = grainflow("run " + file + " --quiet --output " + dir.file("out") + " --restart " + dir.file("short.bin"));
+  const auto r = restartFromDamagedCheckpoint([](std::string& bytes) { bytes.resize(bytes.size() - 100); });
   EXPECT_EQ(r.exitCode, 4) << r.output;
   EXPECT_NE(r.output.find("truncated"), std::string::npos) << r.output;
 }
