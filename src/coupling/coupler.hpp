@@ -66,6 +66,7 @@ struct CouplerSettings {
   std::string dragLaw = "di_felice";
   std::string voidFraction = "divided";
   InterpolationMode interpolation = InterpolationMode::Trilinear;
+  bool fluxVelocity = true;  // cell velocity seen by particles from the superficial face flux (coupler.cpp)
   ExchangeScheme exchange = ExchangeScheme::SemiImplicit;
   ForceSwitches forces;
   double smoothingLength = 0.0;  // m; 0 = off
@@ -118,6 +119,7 @@ class Coupler {
 
  private:
   void packSamples(const FluidView& fluid, const CouplingFields& fields);
+  void scaleToFluxVelocity(const Field& eps);
   template <InterpolationMode Mode, class Law>
   void forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet& particles);
   void alignPreviousSlip(const dem::ParticleSet& particles);
