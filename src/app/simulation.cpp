@@ -283,7 +283,9 @@ void Simulation::advance() {
   step_ += settings_.demStepsPerCouplingStep;
 }
 
-RunState Simulation::state() const { return RunState{time(), step_, dem_.get(), fluid_.get(), coupler_.get()}; }
+RunState Simulation::state() const {
+  return RunState{time(), step_, dem_.get(), fluid_.get(), coupler_.get(), settings_.gravity};
+}
 
 void Simulation::checkHealth() const {
   dem_->checkHealth(step_, time());
