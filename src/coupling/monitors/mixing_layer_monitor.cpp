@@ -1,20 +1,24 @@
 // Monitor "mixing_layer": width of the particle-fluid mixing layer of a Rayleigh-Taylor instability
 // (a suspension layer, the "heavy fluid", above particle-free fluid), seed 001 sec. 3.3 (lines 375-424).
 //
-// The solid fraction is averaged over each cell layer normal to `axis` (from the coupling's void
-// fraction field). phi0 is the layer-average solid fraction of the suspension at the first sample
-// (the mean over the layers holding more than half the densest layer). Fronts (seed 001 line 409:
-// "from the first position where we have the diluted region of particles and ending with the last
-// denser layer having less particles than the initial packing"):
-//   lower_front  centre of the lowest layer with phi > threshold phi0        (spikes falling)
-//   upper_front  centre of the highest layer with phi < (1 - threshold) phi0, searched downwards
-//                from the top of the initial suspension                        (bubbles rising)
-//   mixing_width h = upper_front - lower_front
+// The solid fraction phi is averaged over each cell layer normal to `axis` (from the coupling's void
+// fraction field), then over `smoothing_layers` neighbouring layers (a running mean: a layer of a few
+// hundred particles fluctuates by several per cent). The first sample fixes the initial profile
+// phi_init and phi0, the mean of phi_init over the suspension (layers above half the densest).
+// Fronts (seed 001 line 409: "from the first position where we have the diluted region of particles
+// and ending with the last denser layer having less particles than the initial packing"):
+//   lower_front  centre of the lowest layer with phi > threshold phi0              (spikes falling)
+//   upper_front  going up from the lower front, centre of the last layer with
+//                phi < (1 - threshold) phi_init before a layer of the initial suspension that
+//                still holds its initial packing                                    (bubbles rising)
+//   mixing_width h = upper_front - lower_front (the initial interface has h ~ 0)
+// Searching upwards from the mixing zone (not down from the top) keeps the clear layer that
+// opens under a closed lid as the suspension settles from counting as mixing.
 // Growth law after the initial exponential phase (seed 001 eq. 42-43): h = alpha A g t^2,
 //   A = (rho_mix - rho_f) / (rho_mix + rho_f), rho_mix = (1 - phi0) rho_f + phi0 rho_p.
-//   alpha        least-squares slope of h against A g t^2 over the samples with fit_start <= t
-//                (with an intercept, so the width reached by the end of the exponential phase
-//                does not bias the slope); 0 before two such samples exist.
+//   alpha        least-squares slope of h against A g t^2 over the samples with
+//                fit_start <= t <= fit_end (with an intercept, so the width reached by the end of
+//                the exponential phase does not bias the slope); 0 before two such samples exist.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -38,32 +42,42 @@ class MixingLayerMonitor final : public Monitor {
     fitStart_ = p.real({"fit_start", "s", "mixing_layer: first time of the alpha fit (end of the exponential phase)",
                         Range::atLeast(0.0)},
                        0.2);
+    fitEnd_ = p.real({"fit_end", "s", "mixing_layer: last time of the alpha fit (before the fronts reach the walls)",
+                      Range::positive()},
+                     1e30);
+    smoothing_ = static_cast<int>(p.integer(
+        {"smoothing_layers", "-", "mixing_layer: layers in the running mean of the solid-fraction profile (odd)",
+         Range::atLeast(1)},
+        3));
+    if (smoothing_ % 2 == 0) p.fail("smoothing_layers", std::to_string(smoothing_), "an odd number of layers");
   }
   std::vector<MonitorColumn> columns() const override {
     return {{"mixing_width", "m"}, {"lower_front", "m"}, {"upper_front", "m"}, {"atwood_number", "-"}, {"alpha", "-"}};
   }
   std::vector<double> sample(const RunState& s) override {
     if (!s.dem || !s.fluid || s.dem->particles().size() == 0) return {0, 0, 0, 0, 0};
-    const std::vector<double> phi = layerSolidFraction(*s.fluid);
+    const std::vector<double> phi = smoothed(layerSolidFraction(*s.fluid));
     const CartesianGrid& g = s.fluid->grid();
     const int layers = static_cast<int>(phi.size());
     if (!initialised_) initialise(phi, s);
-    int lowest = layers - 1, highest = 0;
+    int lower = layers - 1;
     for (int l = 0; l < layers; ++l)
       if (phi[l] > threshold_ * phi0_) {
-        lowest = l;
+        lower = l;
         break;
       }
-    for (int l = topLayer_; l >= 0; --l)
-      if (phi[l] < (1.0 - threshold_) * phi0_) {
-        highest = l;
-        break;
-      }
+    // Upwards from the lower front, the mixing zone ends below the first layer of the initial
+    // suspension that still holds its initial packing.
+    int upper = std::max(lower, bottomLayer_ - 1);
+    for (int l = std::max(lower, bottomLayer_); l <= topLayer_; ++l) {
+      if (phi[l] >= (1.0 - threshold_) * phiInit_[l]) break;
+      upper = l;
+    }
     const double dz = g.spacing[axis_];
-    const double lower = g.origin[axis_] + (lowest + 0.5) * dz, upper = g.origin[axis_] + (highest + 0.5) * dz;
-    const double width = std::max(0.0, upper - lower);
-    if (s.time >= fitStart_) accumulateFit(atwood_ * gravity_ * s.time * s.time, width);
-    return {width, lower, upper, atwood_, alpha()};
+    const double lowerFront = g.origin[axis_] + (lower + 0.5) * dz, upperFront = g.origin[axis_] + (upper + 0.5) * dz;
+    const double width = upperFront - lowerFront;
+    if (s.time >= fitStart_ && s.time <= fitEnd_) accumulateFit(atwood_ * gravity_ * s.time * s.time, width);
+    return {width, lowerFront, upperFront, atwood_, alpha()};
   }
   void save(BinaryWriter& out) const override {
     out.put(initialised_);
@@ -71,6 +85,8 @@ class MixingLayerMonitor final : public Monitor {
     out.put(atwood_);
     out.put(gravity_);
     out.put(topLayer_);
+    out.put(bottomLayer_);
+    out.putVector(phiInit_);
     for (double v : fit_) out.put(v);
   }
   void load(BinaryReader& in) override {
@@ -79,6 +95,8 @@ class MixingLayerMonitor final : public Monitor {
     atwood_ = in.get<double>();
     gravity_ = in.get<double>();
     topLayer_ = in.get<int>();
+    bottomLayer_ = in.get<int>();
+    phiInit_ = in.getVector<double>();
     for (double& v : fit_) v = in.get<double>();
   }
 
@@ -102,16 +120,30 @@ class MixingLayerMonitor final : public Monitor {
     }
     return phi;
   }
+  std::vector<double> smoothed(const std::vector<double>& phi) const {
+    const int n = static_cast<int>(phi.size()), half = smoothing_ / 2;
+    std::vector<double> out(n);
+    for (int l = 0; l < n; ++l) {
+      const int lo = std::max(0, l - half), hi = std::min(n - 1, l + half);
+      double sum = 0.0;
+      for (int m = lo; m <= hi; ++m) sum += phi[m];
+      out[l] = sum / (hi - lo + 1);
+    }
+    return out;
+  }
   void initialise(const std::vector<double>& phi, const RunState& s) {
+    phiInit_ = phi;
     const double densest = *std::max_element(phi.begin(), phi.end());
     double sum = 0.0;
     int count = 0;
     topLayer_ = 0;
+    bottomLayer_ = static_cast<int>(phi.size());
     for (int l = 0; l < static_cast<int>(phi.size()); ++l)
       if (phi[l] > 0.5 * densest) {
         sum += phi[l];
         ++count;
         topLayer_ = l;
+        bottomLayer_ = std::min(bottomLayer_, l);
       }
     phi0_ = count > 0 ? sum / count : 0.0;
     const dem::ParticleSet& p = s.dem->particles();
@@ -140,10 +172,12 @@ class MixingLayerMonitor final : public Monitor {
   }
 
   int axis_ = 2;
-  double threshold_ = 0.1, fitStart_ = 0.2;
+  double threshold_ = 0.1, fitStart_ = 0.2, fitEnd_ = 1e30;
+  int smoothing_ = 3;
+  std::vector<double> phiInit_;
   bool initialised_ = false;
   double phi0_ = 0.0, atwood_ = 0.0, gravity_ = 9.81;
-  int topLayer_ = 0;
+  int topLayer_ = 0, bottomLayer_ = 0;  // the initial suspension's layers
   double fit_[5] = {0, 0, 0, 0, 0};
 };
 
