@@ -32,6 +32,7 @@ std::string commandOutput(const std::string& command) {
 }
 
 std::string formatTolerance(const Tolerance& t) {
+  if (t.lowerBound) return ">= reference";
   return t.relative ? fmt::format("{:.3g} %", 100.0 * t.value) : fmt::format("{:.3g}", t.value);
 }
 std::string formatError(const Row& r) {
@@ -99,7 +100,7 @@ std::string resultsCsv(const std::vector<Row>& rows) {
                        r.comparison ? fmt::format("{:.10g}", r.comparison->reference) : "",
                        r.comparison ? fmt::format("{:.10g}", r.comparison->computed) : "",
                        r.comparison ? fmt::format("{:.6g}", r.comparison->error) : "", fmt::format("{:.6g}", r.tolerance.value),
-                       r.tolerance.relative ? "relative" : "absolute", r.pass() ? 1 : 0, csvCell(r.note));
+                       r.tolerance.lowerBound ? "lower_bound" : r.tolerance.relative ? "relative" : "absolute", r.pass() ? 1 : 0, csvCell(r.note));
   return out;
 }
 
