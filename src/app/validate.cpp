@@ -185,10 +185,12 @@ void ValidationRun::compare() {
     const auto& runs = item.runsFor(options_.quick);
     const std::string itemDirectory = (fs::path(options_.outputDirectory) / item.name).string();
     for (std::size_t q = 0; q < item.quantities.size(); ++q) {
-      const auto rows = compareQuantity(item, item.quantities[q], runs, extracted_[i][q], failures_[i]);
+      Quantity quantity = item.quantities[q];
+      quantity.tolerance = quantity.toleranceFor(options_.quick);  // quick_tolerance in --quick mode
+      const auto rows = compareQuantity(item, quantity, runs, extracted_[i][q], failures_[i]);
       rowsPerItem_[i].insert(rowsPerItem_[i].end(), rows.begin(), rows.end());
       if (options_.plots)
-        outcomes_[i].plots.push_back(writePlotSpec(item, item.quantities[q], runs, extracted_[i][q], rows, itemDirectory, plotSpecs_));
+        outcomes_[i].plots.push_back(writePlotSpec(item, quantity, runs, extracted_[i][q], rows, itemDirectory, plotSpecs_));
     }
     rows_.insert(rows_.end(), rowsPerItem_[i].begin(), rowsPerItem_[i].end());
   }

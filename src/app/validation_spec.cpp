@@ -204,10 +204,11 @@ Series readReferenceCsv(const Map& ref, const std::string& path, const std::stri
 }
 
 PlotSpec readPlot(const Map& q);
+Tolerance readTolerance(const Map& q, const std::string& key, const Quantity& quantity);
 
 Quantity readQuantity(const Map& q, const std::string& directory, bool hasSweep) {
   q.allowOnly({"name", "monitor", "column", "x_column", "operation", "numerator", "denominator", "window", "threshold",
-               "at", "scale", "offset", "across_runs", "reference", "tolerance", "plot"});
+               "at", "scale", "offset", "across_runs", "reference", "tolerance", "quick_tolerance", "plot"});
   Quantity out;
   out.name = q.text("name");
   out.monitor = q.text("monitor");
@@ -259,19 +260,26 @@ Quantity readQuantity(const Map& q, const std::string& directory, bool hasSweep)
   }
 
   out.plot = readPlot(q);
-  const Map tol = q.map("tolerance");
+  out.tolerance = readTolerance(q, "tolerance", out);
+  if (q.has("quick_tolerance")) out.quickTolerance = readTolerance(q, "quick_tolerance", out);
+  return out;
+}
+
+Tolerance readTolerance(const Map& q, const std::string& key, const Quantity& quantity) {
+  const Map tol = q.map(key);
   tol.allowOnly({"absolute", "relative", "lower_bound"});
-  out.tolerance.lowerBound = tol.boolean("lower_bound", false);
-  if (out.tolerance.lowerBound) {
+  Tolerance out;
+  out.lowerBound = tol.boolean("lower_bound", false);
+  if (out.lowerBound) {
     if (tol.has("absolute") || tol.has("relative"))
       tol.fail(tol.has("absolute") ? "absolute" : "relative", "a tolerance with lower_bound: true", "lower_bound alone");
-    if (!out.reference.value) tol.fail("lower_bound", "a lower bound without reference.value", "reference: {value: BOUND}");
+    if (!quantity.reference.value) tol.fail("lower_bound", "a lower bound without reference.value", "reference: {value: BOUND}");
     return out;
   }
   if (tol.has("absolute") == tol.has("relative")) tol.fail("absolute", "both or neither of 'absolute' and 'relative' (or lower_bound: true)", "exactly one of them");
-  out.tolerance.relative = tol.has("relative");
-  out.tolerance.value = tol.real(out.tolerance.relative ? "relative" : "absolute");
-  if (!(out.tolerance.value >= 0.0)) tol.fail(out.tolerance.relative ? "relative" : "absolute", "a negative number", ">= 0");
+  out.relative = tol.has("relative");
+  out.value = tol.real(out.relative ? "relative" : "absolute");
+  if (!(out.value >= 0.0)) tol.fail(out.relative ? "relative" : "absolute", "a negative number", ">= 0");
   return out;
 }
 

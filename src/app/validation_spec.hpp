@@ -64,7 +64,9 @@ struct Quantity {
   AcrossRuns across = AcrossRuns::None;
   Reference reference;
   Tolerance tolerance;
+  std::optional<Tolerance> quickTolerance;  // replaces `tolerance` in --quick mode (coarser quick settings)
   PlotSpec plot;
+  const Tolerance& toleranceFor(bool quick) const { return quick && quickTolerance ? *quickTolerance : tolerance; }
 };
 
 struct Item {

@@ -119,6 +119,14 @@ TEST(ValidationSpec, AcrossRunsKindsAndLowerBound) {
             std::string::npos);
 }
 
+TEST(ValidationSpec, QuickToleranceReplacesTheToleranceInQuickMode) {
+  TempDir dir;
+  const Item item = loadItem(itemDir(dir, replaced(kItem, "    tolerance: {relative: 0.01}", "    tolerance: {relative: 0.01}\n    quick_tolerance: {relative: 0.05}")));
+  EXPECT_DOUBLE_EQ(item.quantities[0].toleranceFor(false).value, 0.01);
+  EXPECT_DOUBLE_EQ(item.quantities[0].toleranceFor(true).value, 0.05);
+  EXPECT_DOUBLE_EQ(item.quantities[1].toleranceFor(true).value, 0.1);  // none given: the tolerance
+}
+
 TEST(ValidationSpec, OverridesFollowKeyPathsIntoMapsAndLists) {
   const std::string text = applyOverrides(
       "time: {end: 1.0}\nmaterials:\n  - {name: a, restitution: 0.5}\n  - {name: b}\ninsertion:\n  - {velocity: [0, 0, 1]}\n",
