@@ -68,6 +68,7 @@ std::string writePlotSpec(const Item& item, const Quantity& q, const std::vector
   const std::string png = (fs::path(itemDirectory) / fmt::format("{}_{}.png", item.name, slug(q.name))).string();
   std::vector<PlotSeries> series;
   std::string xLabel = q.plot.xLabel, yLabel = q.plot.yLabel, note;
+  PlotSpec axes = q.plot;
   const bool sweep = runs.size() > 1 || !item.sweepKey.empty();
   const Extracted* first = nullptr;
   for (const Extracted& e : extracted)
@@ -114,7 +115,6 @@ std::string writePlotSpec(const Item& item, const Quantity& q, const std::vector
         differences.y.push_back(std::abs(computed.y[k] - computed.y[k + 1]));
       }
       computed = differences;
-      PlotSpec axes = q.plot;
       axes.logX = axes.logY = true;
       if (!computed.x.empty() && q.reference.value) {
         const double p = *q.reference.value * (computed.x.back() > computed.x.front() ? -1.0 : 1.0);
@@ -122,13 +122,7 @@ std::string writePlotSpec(const Item& item, const Quantity& q, const std::vector
         for (double x : computed.x) slope.y.push_back(computed.y.front() * std::pow(x / computed.x.front(), p));
         series.push_back(slope);
       }
-      series.insert(series.begin(), computed);
-      const std::string specFile = (fs::path(itemDirectory) / fmt::format("{}_{}.plot.json", item.name, slug(q.name))).string();
-      io::writeFileAtomically(specFile, plotSpecJson(png, fmt::format("{}: {}", item.title, q.name), xLabel, yLabel, axes, note, series));
-      specs.push_back(specFile);
-      return png;
-    }
-    if (q.across == AcrossRuns::MinIncrement) {
+    } else if (q.across == AcrossRuns::MinIncrement) {
       // the values themselves; no reference line (the bound is on their differences)
     } else if (q.across == AcrossRuns::LogLogSlope && computed.x.size() >= 1 && q.reference.value) {
       PlotSeries slope{fmt::format("slope {:g} (reference)", *q.reference.value), "dashed", computed.x, {}};
@@ -143,7 +137,7 @@ std::string writePlotSpec(const Item& item, const Quantity& q, const std::vector
     series.insert(series.begin(), computed);
   }
   const std::string specFile = (fs::path(itemDirectory) / fmt::format("{}_{}.plot.json", item.name, slug(q.name))).string();
-  io::writeFileAtomically(specFile, plotSpecJson(png, fmt::format("{}: {}", item.title, q.name), xLabel, yLabel, q.plot, note, series));
+  io::writeFileAtomically(specFile, plotSpecJson(png, fmt::format("{}: {}", item.title, q.name), xLabel, yLabel, axes, note, series));
   specs.push_back(specFile);
   return png;
 }
