@@ -172,9 +172,15 @@ void writeDocs(const std::string& docsDirectory, const std::string& repository, 
       md += fmt::format("; sweep `{}` = {}", item.sweepKey, fmt::join(values, ", "));
     }
     md += fmt::format("; wall time {:.1f} s.\n\n", outcomes[i].wallSeconds);
-    for (const Quantity& q : item.quantities)
-      md += fmt::format("- `{}`: {} of `{}` in `{}.csv`{}; reference: {}\n", q.name, operationName(q.operation), q.column, q.monitor,
-                        q.across == AcrossRuns::LogLogSlope ? ", observed order (log-log slope over the runs)" : "", q.reference.source);
+    for (const Quantity& q : item.quantities) {
+      const std::string across = q.across == AcrossRuns::LogLogSlope       ? ", log-log slope over the runs"
+                                 : q.across == AcrossRuns::RichardsonOrder ? ", observed order from the last three runs (Richardson)"
+                                 : q.across == AcrossRuns::MinIncrement    ? ", smallest increase between the runs"
+                                                                           : "";
+      const std::string quick = q.quickTolerance ? fmt::format("; tolerance in --quick mode {}", formatTolerance(*q.quickTolerance)) : "";
+      md += fmt::format("- `{}`: {} of `{}` in `{}.csv`{}; reference: {}{}\n", q.name, operationName(q.operation), q.column, q.monitor,
+                        across, q.reference.source, quick);
+    }
     md += "\n" + markdownTable(rowsPerItem[i]) + "\n";
     for (const std::string& png : outcomes[i].plots) {
       std::error_code ec;
