@@ -29,7 +29,7 @@ CouplerSettings readSettings(Params& s) {
                              "two faces / eps of the cell (per axis, from the fluid's face-mean cell velocity and the "
                              "eps of the cell and its neighbours; same as 'face_mean' where eps is uniform), "
                              "'face_mean' = the fluid's cell velocity (mean of the face velocities) as given"},
-                            {"flux", "face_mean"}, "flux") == "flux";
+                            {"flux", "face_mean"}, "face_mean") == "flux";
   c.exchange = s.choice({"exchange", "-", "drag given to the fluid explicitly (force density) or semi-implicitly "
                                           "(coefficient K and mean particle velocity)"},
                         {"explicit", "implicit"}, "implicit") == "explicit"

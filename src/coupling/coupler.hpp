@@ -66,7 +66,7 @@ struct CouplerSettings {
   std::string dragLaw = "di_felice";
   std::string voidFraction = "divided";
   InterpolationMode interpolation = InterpolationMode::Trilinear;
-  bool fluxVelocity = true;  // cell velocity seen by particles from the superficial face flux (coupler.cpp)
+  bool fluxVelocity = false;  // cell velocity seen by particles from the superficial face flux (coupler.cpp)
   ExchangeScheme exchange = ExchangeScheme::SemiImplicit;
   ForceSwitches forces;
   double smoothingLength = 0.0;  // m; 0 = off
