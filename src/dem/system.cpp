@@ -194,7 +194,10 @@ void System::rebuild(std::vector<std::uint32_t> order, std::size_t listedRows) {
 
 void System::computeForces(double dt, double halfKick) {
   ScopedPhase timer(timers_, Phase::Contacts);
-  const WallState walls{&primitives_, &wallMaterial_, &wallVelocity_, &wallAngularVelocity_, &wallCentre_};
+  bool hasTriangles = false;
+  for (const WallPrimitive& w : primitives_) hasTriangles |= w.kind == PrimitiveKind::Triangle;
+  const WallState walls{&primitives_, &wallMaterial_, &wallVelocity_, &wallAngularVelocity_, &wallCentre_,
+                        hasTriangles};
   dispatchLaws(table_.normalLaw(), table_.rollingLaw(), table_.cohesionLaw(),
                [&]<NormalLaw N, RollingLaw R, CohesionLaw C>() {
                  contactForcesAndKick<N, R, C>(particles_, list_, wallList_, walls, table_, box_, gravity_, dt,
@@ -290,7 +293,9 @@ ContactStatistics System::contactStatistics() const {
     }
     for (std::uint32_t k = wallList_.rowStart[i]; k < wallList_.rowStart[i + 1]; ++k) {
       const WallPrimitive& w = primitives_[wallList_.primitive[k]];
-      const double overlap = w.active ? p.radius[i] - distanceToPrimitive(w, p.position[i]).distance : 0.0;
+      // Entries without force are not in contact (or mesh duplicates of another triangle's contact).
+      const bool carries = wallList_.force[k] != Vec3{};
+      const double overlap = w.active && carries ? p.radius[i] - distanceToPrimitive(w, p.position[i]).distance : 0.0;
       if (overlap <= 0.0) continue;
       ++s.wallContacts;
       s.maxOverlapRatio = std::max(s.maxOverlapRatio, overlap / p.radius[i]);
@@ -323,7 +328,8 @@ EnergyBalance System::energy() const {
     }
     for (std::uint32_t k = wallList_.rowStart[i]; k < wallList_.rowStart[i + 1]; ++k) {
       const WallPrimitive& w = primitives_[wallList_.primitive[k]];
-      const double overlap = w.active ? p.radius[i] - distanceToPrimitive(w, p.position[i]).distance : 0.0;
+      const bool carries = wallList_.force[k] != Vec3{};  // mesh duplicates carry no force
+      const double overlap = w.active && carries ? p.radius[i] - distanceToPrimitive(w, p.position[i]).distance : 0.0;
       if (overlap > 0.0) e.elastic += stored(table_.pair(p.type[i], wallMaterial_[w.wall]), p.radius[i], overlap);
     }
   }
