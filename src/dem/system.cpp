@@ -190,6 +190,17 @@ void System::rebuild(std::vector<std::uint32_t> order, std::size_t listedRows) {
   positionAtBuild_ = particles_.position;
   timeAtBuild_ = time_;
   ++rebuilds_;
+  updateInverseInertia();
+}
+
+void System::updateInverseInertia() {
+  const ParticleSet& p = particles_;
+  inverseMass_.resize(p.size());
+  inverseMoment_.resize(p.size());
+  parallelFor(static_cast<std::int64_t>(p.size()), [&](std::int64_t i) {
+    inverseMass_[i] = 1.0 / p.mass[i];
+    inverseMoment_[i] = 1.0 / p.inertia(i);  // solid sphere, 2/5 m r^2
+  });
 }
 
 void System::computeForces(double dt, double halfKick) {
@@ -201,7 +212,7 @@ void System::computeForces(double dt, double halfKick) {
   dispatchLaws(table_.normalLaw(), table_.rollingLaw(), table_.cohesionLaw(),
                [&]<NormalLaw N, RollingLaw R, CohesionLaw C>() {
                  contactForcesAndKick<N, R, C>(particles_, list_, wallList_, walls, table_, box_, gravity_, dt,
-                                               halfKick, buffers_);
+                                               halfKick, {inverseMass_.data(), inverseMoment_.data()}, buffers_);
                });
 }
 
@@ -214,15 +225,21 @@ void System::step(double dt) {
     // the largest displacement since the last list build comes with the drift.
     ScopedPhase timer(timers_, Phase::Integration);
     const bool tracked = positionAtBuild_.size() == p.size();
+    const double halfDt = 0.5 * dt;
+    const double* inverseMass = inverseMass_.data();
+    const double* inverseMoment = inverseMoment_.data();
+    Vec3* x = p.position.data();
+    Vec3* v = p.velocity.data();
+    Vec3* w = p.angularVelocity.data();
+    const Vec3* f = p.force.data();
+    const Vec3* tq = p.torque.data();
+    const Vec3* x0 = positionAtBuild_.data();
 #pragma omp parallel for schedule(static) reduction(max : maxDisplacement2)
     for (std::int64_t i = 0; i < n; ++i) {
-      const double invMass = 1.0 / p.mass[i];
-      p.velocity[i] += (0.5 * dt * invMass) * p.force[i];
-      p.angularVelocity[i] += (0.5 * dt * invMass / (0.4 * p.radius[i] * p.radius[i])) * p.torque[i];
-      p.position[i] = box_.wrap(p.position[i] + dt * p.velocity[i]);
-      if (tracked)
-        maxDisplacement2 =
-            std::max(maxDisplacement2, normSquared(box_.minimumImage(p.position[i] - positionAtBuild_[i])));
+      v[i] += (halfDt * inverseMass[i]) * f[i];
+      w[i] += (halfDt * inverseMoment[i]) * tq[i];
+      x[i] = box_.wrap(x[i] + dt * v[i]);
+      if (tracked) maxDisplacement2 = std::max(maxDisplacement2, normSquared(box_.minimumImage(x[i] - x0[i])));
     }
   }
   time_ += dt;
@@ -349,6 +366,7 @@ std::size_t System::memoryBytes() const {
             wallList_.force.capacity() + wallList_.point.capacity()) *
                sizeof(Vec3);
   for (const auto& b : buffers_.force) bytes += 2 * b.capacity() * sizeof(Vec3);
+  bytes += (inverseMass_.capacity() + inverseMoment_.capacity()) * sizeof(double);
   return bytes;
 }
 
@@ -381,6 +399,7 @@ void System::load(BinaryReader& in) {
   list_.load(in);
   wallList_.load(in);
   positionAtBuild_ = in.getVector<Vec3>();
+  updateInverseInertia();
   if (list_.rows() != particles_.size() || positionAtBuild_.size() != particles_.size())
     throw CheckpointError("checkpoint is corrupt: DEM lists do not match the particles");
   for (auto& ins : inserters_) ins->load(in);
