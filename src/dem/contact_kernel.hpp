@@ -247,7 +247,7 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
             if constexpr (R == RollingLaw::Epsd) list.rollingHistory[k] = Vec3{};
             continue;
           }
-          const double dist = std::sqrt(dist2);
+          const double dist = sqrtNonNegative(dist2);
           ContactGeometry g;
           g.normal = (1.0 / dist) * d;
           g.overlap = rsum - dist;
