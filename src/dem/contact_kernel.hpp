@@ -35,10 +35,12 @@ void dispatchLaws(NormalLaw n, RollingLaw r, CohesionLaw c, F&& f) {
   else withRolling.template operator()<NormalLaw::HertzMindlin>();
 }
 
-/// Per-thread partner force buffers (threads 0..T-2).
+/// Per-thread partner force buffers (threads 0..T-2). Thread t's rows end at end_t = n (t+1)/T and
+/// only partners j >= end_t go to its buffer, so it holds indices [end_t, n) (entry j - end_t).
 struct PartnerBuffers {
   std::vector<std::vector<Vec3>> force, torque;
-  std::vector<std::uint32_t> lo, hi;  // touched range per thread
+  std::vector<std::uint32_t> lo, hi;  // touched range per thread (particle indices)
+  static std::size_t blockEnd(std::size_t n, int t, int threads) { return n * (t + 1) / threads; }
   void prepare(int threads, std::size_t n) {
     const std::size_t t = threads > 1 ? threads - 1 : 0;
     force.resize(t);
@@ -46,9 +48,10 @@ struct PartnerBuffers {
     lo.assign(t, static_cast<std::uint32_t>(n));
     hi.assign(t, 0);
     for (std::size_t k = 0; k < t; ++k) {
-      if (force[k].size() != n) {
-        force[k].assign(n, Vec3{});
-        torque[k].assign(n, Vec3{});
+      const std::size_t size = n - blockEnd(n, static_cast<int>(k), threads);
+      if (force[k].size() != size) {
+        force[k].assign(size, Vec3{});
+        torque[k].assign(size, Vec3{});
       }
     }
   }
@@ -272,8 +275,8 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
             force[j] -= c.force;
             torque[j] += tqj;
           } else {
-            bufferForce[j] -= c.force;
-            bufferTorque[j] += tqj;
+            bufferForce[j - end] -= c.force;
+            bufferTorque[j - end] += tqj;
             touchedLo = std::min(touchedLo, j);
             touchedHi = std::max(touchedHi, j + 1);
           }
@@ -297,11 +300,14 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
       for (int s = 0; s < team - 1; ++s) {
         const std::size_t from = std::max<std::size_t>(begin, buffers.lo[s]);
         const std::size_t to = std::min<std::size_t>(end, buffers.hi[s]);
+        const std::size_t offset = PartnerBuffers::blockEnd(n, s, team);
+        Vec3* fs = buffers.force[s].data();
+        Vec3* ts = buffers.torque[s].data();
         for (std::size_t i = from; i < to; ++i) {
-          force[i] += buffers.force[s][i];
-          torque[i] += buffers.torque[s][i];
-          buffers.force[s][i] = Vec3{};
-          buffers.torque[s][i] = Vec3{};
+          force[i] += fs[i - offset];
+          torque[i] += ts[i - offset];
+          fs[i - offset] = Vec3{};
+          ts[i - offset] = Vec3{};
         }
       }
       if (t > 0 && halfKick != 0.0)
