@@ -1,4 +1,5 @@
-// DEM throughput: dense bed (the issue-4 benchmark), free flight, and scaling with particle count.
+// DEM throughput: random settled bed (the issue-4 benchmark), lattice beds, free flight, and
+// scaling with particle count.
 // Counters: ns_per_particle_step (wall time / (particles x steps)), bytes_per_particle (all DEM
 // arrays incl. neighbour list and contact history), rebuilds during the timed steps.
 #include <benchmark/benchmark.h>
@@ -8,6 +9,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
+#include <utility>
 
 #include "core/domain.hpp"
 #include "core/params.hpp"
@@ -68,6 +71,101 @@ void runSteps(benchmark::State& state, Bed& bed, int warmup) {
   state.counters["contacts_per_particle"] = s.contactStatistics().coordinationNumber;
   state.counters["rebuilds"] = static_cast<double>(s.rebuilds() - rebuilds0);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Random settled bed (issue 4): spheres d = 2 mm, rho = 2500, Hertz-Mindlin with history, E = 1e7,
+// nu = 0.45, e = 0.3, mu = 0.5, dt = 2e-6. Built at set-up, nothing cached on disk:
+//  1. random sequential addition at solid fraction 0.22 in a tall region (geometric, cheap);
+//  2. settling with the real Hertz law but frictionless (a denser, better-connected bed, as a
+//     poured bed of rough spheres after tapping), dt = 1e-5 (11 % of the Rayleigh time) and
+//     4 g for 0.06 s (a body force, so the fall is quick), then 1 g for 0.015 s;
+//  3. the settled positions go into a system with the spec parameters (mu = 0.5), whose contacts
+//     then build up their tangential history during the warm-up steps.
+struct SettledTile {
+  std::vector<gf::Vec3> position;
+  double radius = 0.001, lx = 0, ly = 0;
+};
+
+std::string settledBedYaml(double lx, double ly, double friction, bool periodic, const std::string& insertion) {
+  std::string out = fmt::format(R"(
+materials:
+  - {{name: glass, density: 2500, youngs_modulus: 1e7, poisson_ratio: 0.45}}
+contact: {{law: hertz_mindlin, restitution: 0.3, friction: {}}}
+domain: {{min: [0, 0, 0], max: [{}, {}, 0.2], periodic: [{}, {}, 0]}}
+neighbour_search: {{skin: 0.0002}}
+{}
+)",
+                                friction, lx, ly, periodic ? 1 : 0, periodic ? 1 : 0, insertion);
+  if (periodic) out += "walls:\n  - {type: plane, point: [0, 0, 0], normal: [0, 0, 1]}\n";
+  else out += fmt::format("walls:\n  - {{type: box, min: [0, 0, 0], max: [{}, {}, 0.2]}}\n", lx, ly);
+  return out;
+}
+
+SettledTile settleBed(double lx, double ly, int count, bool periodic) {
+  const double d = 0.002;
+  const double solid = count * std::numbers::pi / 6.0 * d * d * d;
+  const double height = solid / (0.22 * lx * ly);
+  const std::string insertion = fmt::format(
+      "insertion:\n  - {{type: random_packing, min: [0, 0, 0], max: [{}, {}, {}], count: {}, seed: 11, "
+      "size: {{diameter: {}}}}}\n",
+      lx, ly, height, count, d);
+  gf::Params params = gf::Params::loadString(settledBedYaml(lx, ly, 0.0, periodic, insertion), "settle.yaml");
+  const gf::Domain domain = gf::Domain::read(params);
+  const double g = 9.81;
+  System s(params, domain, gf::Vec3{0, 0, -g});
+  auto& p = s.particles();
+  for (std::size_t i = 0; i < p.size(); ++i) p.externalForce[i] = gf::Vec3{0, 0, -3.0 * g * p.mass[i]};
+  const double dt = 1e-5;
+  for (int k = 0; k < 6000; ++k) s.step(dt);
+  for (std::size_t i = 0; i < p.size(); ++i) p.externalForce[i] = gf::Vec3{};
+  for (int k = 0; k < 1500; ++k) s.step(dt);
+  SettledTile tile;
+  tile.position = p.position;
+  tile.radius = 0.5 * d;
+  tile.lx = lx;
+  tile.ly = ly;
+  return tile;
+}
+
+/// The spec system filled with the tile repeated tx x ty times (periodic tiles only).
+std::unique_ptr<Bed> bedFromTile(const SettledTile& tile, int tx, int ty, bool periodic) {
+  const double lx = tile.lx * tx, ly = tile.ly * ty;
+  gf::Params params = gf::Params::loadString(settledBedYaml(lx, ly, 0.5, periodic, ""), "bench.yaml");
+  const gf::Domain domain = gf::Domain::read(params);
+  auto bed = std::make_unique<Bed>(std::move(params), domain);
+  auto& p = bed->system->particles();
+  p.reserve(tile.position.size() * tx * ty);
+  std::int64_t id = 0;
+  for (int b = 0; b < ty; ++b)
+    for (int a = 0; a < tx; ++a)
+      for (const gf::Vec3& x : tile.position)
+        p.add(id++, 0, tile.radius, 2500.0, x + gf::Vec3{a * tile.lx, b * tile.ly, 0.0});
+  bed->system->refresh();
+  return bed;
+}
+
+// ~15,000 spheres settled in the 0.06 x 0.06 x 0.2 m box of the issue (walls on all sides).
+void BM_DemSettledBed(benchmark::State& state) {
+  const auto start = std::chrono::steady_clock::now();
+  static const SettledTile tile = settleBed(0.06, 0.06, 15000, false);
+  state.counters["setup_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  auto bed = bedFromTile(tile, 1, 1, false);
+  runSteps(state, *bed, 500);
+}
+BENCHMARK(BM_DemSettledBed)->Unit(benchmark::kMillisecond)->MinTime(3.0)->UseRealTime();
+
+// The same random bed from 1e4 to 1e6 particles: a settled tile of 3,750 spheres
+// (0.03 x 0.03 m, periodic in x and y, on a floor) repeated side by side.
+void BM_DemSettledBedScaling(benchmark::State& state) {
+  static const SettledTile tile = settleBed(0.03, 0.03, 3750, true);
+  const double tiles = static_cast<double>(state.range(0)) / tile.position.size();
+  const int tx = std::max(1, static_cast<int>(std::lround(std::sqrt(tiles))));
+  const int ty = std::max(1, static_cast<int>(std::lround(tiles / tx)));
+  auto bed = bedFromTile(tile, tx, ty, true);
+  runSteps(state, *bed, 100);
+}
+BENCHMARK(BM_DemSettledBedScaling)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)->UseRealTime();
 
 // ~15,000 spheres (30 x 30 x 17) in a 0.06 x 0.06 x 0.2 m box.
 void BM_DemDenseBed(benchmark::State& state) {

@@ -35,10 +35,12 @@ void dispatchLaws(NormalLaw n, RollingLaw r, CohesionLaw c, F&& f) {
   else withRolling.template operator()<NormalLaw::HertzMindlin>();
 }
 
-/// Per-thread partner force buffers (threads 0..T-2).
+/// Per-thread partner force buffers (threads 0..T-2). Thread t's rows end at end_t = n (t+1)/T and
+/// only partners j >= end_t go to its buffer, so it holds indices [end_t, n) (entry j - end_t).
 struct PartnerBuffers {
   std::vector<std::vector<Vec3>> force, torque;
-  std::vector<std::uint32_t> lo, hi;  // touched range per thread
+  std::vector<std::uint32_t> lo, hi;  // touched range per thread (particle indices)
+  static std::size_t blockEnd(std::size_t n, int t, int threads) { return n * (t + 1) / threads; }
   void prepare(int threads, std::size_t n) {
     const std::size_t t = threads > 1 ? threads - 1 : 0;
     force.resize(t);
@@ -46,9 +48,10 @@ struct PartnerBuffers {
     lo.assign(t, static_cast<std::uint32_t>(n));
     hi.assign(t, 0);
     for (std::size_t k = 0; k < t; ++k) {
-      if (force[k].size() != n) {
-        force[k].assign(n, Vec3{});
-        torque[k].assign(n, Vec3{});
+      const std::size_t size = n - blockEnd(n, static_cast<int>(k), threads);
+      if (force[k].size() != size) {
+        force[k].assign(size, Vec3{});
+        torque[k].assign(size, Vec3{});
       }
     }
   }
@@ -61,9 +64,24 @@ struct WallState {
   const std::vector<Vec3>* velocity;   // per wall, translation
   const std::vector<Vec3>* angularVelocity;
   const std::vector<Vec3>* centre;     // per wall, current
+  bool hasTriangles = false;           // any triangle primitive (mesh contacts are de-duplicated)
+};
+
+/// A touching triangle of a mesh, before de-duplication.
+struct TriangleTouch {
+  std::uint32_t entry;
+  WallDistance distance;
+  int rank;  // 0: face contact, 1: edge/vertex contact with history, 2: edge/vertex contact without
 };
 
 /// Adds the wall contact forces of particle i (touches only particle i and its wall entries).
+///
+/// Triangle meshes: a sphere touching a shared edge or vertex sees the same closest point on
+/// every triangle that shares it. Like LIGGGHTS (mesh contact de-duplication), face contacts are
+/// accepted first, then edge/vertex contacts (those with tangential history first, so a lasting
+/// contact keeps its history); a contact is dropped if its contact point lies on a triangle of the
+/// same wall that was already accepted. A sphere on an edge or vertex gets one contact; a sphere
+/// in a concave corner keeps one contact per face.
 template <NormalLaw N, RollingLaw R, CohesionLaw C>
 inline void wallContactsOfParticle(ParticleSet& p, WallContactList& list, const ContactTable& table,
                                    const WallState& walls, double dt, std::size_t i) {
@@ -73,15 +91,12 @@ inline void wallContactsOfParticle(ParticleSet& p, WallContactList& list, const 
   const PairCoefficients* coefficients = table.data();
   const Vec3 xi = p.position[i], vi = p.velocity[i], wi = p.angularVelocity[i];
   const double ri = p.radius[i], mi = p.mass[i];
-  for (std::uint32_t k = first; k < last; ++k) {
-    const WallPrimitive& prim = (*walls.primitives)[list.primitive[k]];
-    const WallDistance wd = prim.active ? distanceToPrimitive(prim, xi) : WallDistance{1e300, {}};
-    if (wd.distance >= ri) {
-      list.tangentialHistory[k] = Vec3{};
-      if constexpr (R == RollingLaw::Epsd) list.rollingHistory[k] = Vec3{};
-      list.force[k] = Vec3{};
-      continue;
-    }
+  auto clear = [&](std::uint32_t k) {
+    list.tangentialHistory[k] = Vec3{};
+    if constexpr (R == RollingLaw::Epsd) list.rollingHistory[k] = Vec3{};
+    list.force[k] = Vec3{};
+  };
+  auto apply = [&](std::uint32_t k, const WallPrimitive& prim, const WallDistance& wd) {
     const int w = prim.wall;
     const Vec3 contactPoint = xi - wd.distance * wd.normal;
     const Vec3 ww = (*walls.angularVelocity)[w];
@@ -101,22 +116,83 @@ inline void wallContactsOfParticle(ParticleSet& p, WallContactList& list, const 
     p.torque[i] += c.rollingTorque - ri * cross(g.normal, c.tangential);
     list.force[k] = c.force;
     list.point[k] = contactPoint;
+  };
+  if (!walls.hasTriangles) {
+    for (std::uint32_t k = first; k < last; ++k) {
+      const WallPrimitive& prim = (*walls.primitives)[list.primitive[k]];
+      const WallDistance wd = prim.active ? distanceToPrimitive(prim, xi) : WallDistance{1e300, {}};
+      if (wd.distance >= ri) clear(k);
+      else apply(k, prim, wd);
+    }
+    return;
+  }
+  thread_local std::vector<TriangleTouch> touches;
+  touches.clear();
+  for (std::uint32_t k = first; k < last; ++k) {
+    const WallPrimitive& prim = (*walls.primitives)[list.primitive[k]];
+    if (!prim.active) {
+      clear(k);
+      continue;
+    }
+    if (prim.kind == PrimitiveKind::Triangle) {
+      bool onFace = false;
+      const Vec3 d = xi - closestPointOnTriangle(xi, prim.a, prim.b, prim.c, &onFace);
+      const double dist2 = normSquared(d);
+      if (dist2 >= ri * ri) {
+        clear(k);
+        continue;
+      }
+      const double dist = std::sqrt(dist2);
+      const int rank = onFace ? 0 : (list.tangentialHistory[k] != Vec3{} ? 1 : 2);
+      touches.push_back({k, {dist, dist > 0.0 ? d / dist : Vec3{}}, rank});
+      continue;
+    }
+    const WallDistance wd = distanceToPrimitive(prim, xi);
+    if (wd.distance >= ri) clear(k);
+    else apply(k, prim, wd);
+  }
+  if (touches.empty()) return;
+  std::stable_sort(touches.begin(), touches.end(),
+                   [](const TriangleTouch& a, const TriangleTouch& b) { return a.rank < b.rank; });
+  const double tolerance = 1e-6 * ri;
+  for (std::size_t q = 0; q < touches.size(); ++q) {
+    const WallPrimitive& prim = (*walls.primitives)[list.primitive[touches[q].entry]];
+    const Vec3 contactPoint = xi - touches[q].distance.distance * touches[q].distance.normal;
+    bool duplicate = false;
+    for (std::size_t a = 0; a < q && !duplicate; ++a) {
+      if (touches[a].rank < 0) continue;  // dropped itself
+      const WallPrimitive& accepted = (*walls.primitives)[list.primitive[touches[a].entry]];
+      duplicate = accepted.wall == prim.wall && pointOnTriangle(accepted, contactPoint, tolerance);
+    }
+    if (duplicate) {
+      clear(touches[q].entry);
+      touches[q].rank = -1;
+    } else {
+      apply(touches[q].entry, prim, touches[q].distance);
+    }
   }
 }
+
+/// 1/m and 1/I per particle (I = 2/5 m r^2), kept by the System, so that the integration and the
+/// kicks multiply instead of dividing.
+struct InverseInertia {
+  const double* mass;    // 1/m, 1/kg
+  const double* moment;  // 1/I, 1/(kg m^2)
+};
 
 /// Sets force = body forces + particle-particle + particle-wall contact forces, then (if
 /// halfKick != 0) applies the closing velocity-Verlet half kick v += halfKick F/m, w += halfKick T/I
 /// to each thread's block once its forces are final (one pass less over memory).
+///
+/// One pass per block: force/torque of particle j are set to the body forces just before the first
+/// row that adds to them (rows hold ascending partners j > i), so initialisation, contacts and
+/// the kick of a particle happen while its data are in cache. The order of the additions is the
+/// same as with a separate initialisation pass.
 template <NormalLaw N, RollingLaw R, CohesionLaw C>
 void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& wallList, const WallState& walls,
                           const ContactTable& table, const PeriodicBox& box, const Vec3& gravity, double dt,
-                          double halfKick, PartnerBuffers& buffers) {
+                          double halfKick, const InverseInertia& inverse, PartnerBuffers& buffers) {
   const bool withWalls = !walls.primitives->empty();
-  auto kick = [&](std::size_t i) {
-    const double invMass = 1.0 / p.mass[i];
-    p.velocity[i] += (halfKick * invMass) * p.force[i];
-    p.angularVelocity[i] += (halfKick * invMass / (0.4 * p.radius[i] * p.radius[i])) * p.torque[i];
-  };
   const std::size_t n = p.size();
   const int threads = omp_get_max_threads();
   buffers.prepare(threads, n);
@@ -124,6 +200,21 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
   const PairCoefficients* coefficients = table.data();
   Vec3* force = p.force.data();
   Vec3* torque = p.torque.data();
+  Vec3* velocity = p.velocity.data();
+  Vec3* angularVelocity = p.angularVelocity.data();
+  const Vec3* position = p.position.data();
+  const double* radius = p.radius.data();
+  const double* mass = p.mass.data();
+  const std::int32_t* type = p.type.data();
+  const Vec3* externalForce = p.externalForce.data();
+  const Vec3* externalTorque = p.externalTorque.data();
+  const std::uint32_t* rowStart = list.rowStart.data();
+  const std::uint32_t* partner = list.partner.data();
+  Vec3* history = list.tangentialHistory.data();
+  auto kick = [&](std::size_t i) {
+    velocity[i] += (halfKick * inverse.mass[i]) * force[i];
+    angularVelocity[i] += (halfKick * inverse.moment[i]) * torque[i];
+  };
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num();
@@ -132,83 +223,96 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
     Vec3* bufferForce = t < team - 1 ? buffers.force[t].data() : nullptr;
     Vec3* bufferTorque = t < team - 1 ? buffers.torque[t].data() : nullptr;
     std::uint32_t touchedLo = static_cast<std::uint32_t>(n), touchedHi = 0;
-    for (std::size_t i = begin; i < end; ++i) {
-      force[i] = p.mass[i] * gravity + p.externalForce[i];
-      torque[i] = p.externalTorque[i];
-    }
-    for (std::size_t i = begin; i < end; ++i) {
-      const Vec3 xi = p.position[i], vi = p.velocity[i], wi = p.angularVelocity[i];
-      const double ri = p.radius[i], mi = p.mass[i];
-      const int ti = p.type[i];
-      Vec3 fi{}, tqi{};
-      for (std::uint32_t k = list.rowStart[i]; k < list.rowStart[i + 1]; ++k) {
-        const std::uint32_t j = list.partner[k];
-        const Vec3 d = box.minimumImage(xi - p.position[j]);
-        const double rj = p.radius[j];
-        const double dist2 = normSquared(d);
-        const double rsum = ri + rj;
-        if (dist2 >= rsum * rsum) {
-          list.tangentialHistory[k] = Vec3{};
-          if constexpr (R == RollingLaw::Epsd) list.rollingHistory[k] = Vec3{};
-          continue;
-        }
-        const double dist = std::sqrt(dist2);
-        ContactGeometry g;
-        g.normal = (1.0 / dist) * d;
-        g.overlap = rsum - dist;
-        const Vec3 wj = p.angularVelocity[j];
-        g.relativeVelocity = vi - p.velocity[j] - cross(ri * wi + rj * wj, g.normal);
-        g.relativeAngularVelocity = wi - wj;
-        // R* = r_i r_j/(r_i + r_j) and m* = m_i m_j/(m_i + m_j) with one division.
-        const double mj = p.mass[j], msum = mi + mj;
-        const double inv = 1.0 / (rsum * msum);
-        g.effectiveRadius = ri * rj * msum * inv;
-        g.effectiveMass = mi * mj * rsum * inv;
-        if constexpr (R == RollingLaw::Epsd)
-          g.rollingInertia = 1.0 / (1.0 / (1.4 * mi * ri * ri) + 1.0 / (1.4 * mj * rj * rj));
-        const ContactResult c = contactForce<N, R, C>(coefficients[ti * types + p.type[j]], g,
-                                                      list.tangentialHistory[k],
-                                                      R == RollingLaw::Epsd ? &list.rollingHistory[k] : nullptr, dt);
-        // Torque of the tangential force: -R n x F_t on both (contact point -R_i n from i, +R_j n from j).
-        const Vec3 nxf = cross(g.normal, c.tangential);
-        fi += c.force;
-        tqi += c.rollingTorque - ri * nxf;
-        const Vec3 tqj = -rj * nxf - c.rollingTorque;
-        if (j < end) {
-          force[j] -= c.force;
-          torque[j] += tqj;
-        } else {
-          bufferForce[j] -= c.force;
-          bufferTorque[j] += tqj;
-          touchedLo = std::min(touchedLo, j);
-          touchedHi = std::max(touchedHi, j + 1);
-        }
+    std::size_t initialised = begin;  // force/torque of [begin, initialised) hold the body forces
+    auto initialiseUpTo = [&](std::size_t stop) {
+      for (; initialised < stop; ++initialised) {
+        force[initialised] = mass[initialised] * gravity + externalForce[initialised];
+        torque[initialised] = externalTorque[initialised];
       }
-      force[i] += fi;
-      torque[i] += tqi;
+    };
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
+      initialiseUpTo(first < last ? std::min<std::size_t>(end, std::max<std::size_t>(i, partner[last - 1]) + 1)
+                                  : i + 1);
+      if (first < last) {
+        const Vec3 xi = position[i], vi = velocity[i], wi = angularVelocity[i];
+        const double ri = radius[i], mi = mass[i];
+        const PairCoefficients* rowCoefficients = coefficients + type[i] * types;
+        Vec3 fi{}, tqi{};
+        for (std::uint32_t k = first; k < last; ++k) {
+          const std::uint32_t j = partner[k];
+          const Vec3 d = box.minimumImage(xi - position[j]);
+          const double rj = radius[j];
+          const double dist2 = normSquared(d);
+          const double rsum = ri + rj;
+          if (dist2 >= rsum * rsum) {
+            history[k] = Vec3{};
+            if constexpr (R == RollingLaw::Epsd) list.rollingHistory[k] = Vec3{};
+            continue;
+          }
+          const double dist = sqrtNonNegative(dist2);
+          ContactGeometry g;
+          g.normal = (1.0 / dist) * d;
+          g.overlap = rsum - dist;
+          const Vec3 wj = angularVelocity[j];
+          g.relativeVelocity = vi - velocity[j] - cross(ri * wi + rj * wj, g.normal);
+          g.relativeAngularVelocity = wi - wj;
+          // R* = r_i r_j/(r_i + r_j) and m* = m_i m_j/(m_i + m_j) with one division.
+          const double mj = mass[j], msum = mi + mj;
+          const double inv = 1.0 / (rsum * msum);
+          g.effectiveRadius = ri * rj * msum * inv;
+          g.effectiveMass = mi * mj * rsum * inv;
+          if constexpr (R == RollingLaw::Epsd)
+            g.rollingInertia = 1.0 / (1.0 / (1.4 * mi * ri * ri) + 1.0 / (1.4 * mj * rj * rj));
+          const ContactResult c = contactForce<N, R, C>(rowCoefficients[type[j]], g, history[k],
+                                                        R == RollingLaw::Epsd ? &list.rollingHistory[k] : nullptr, dt);
+          // Torque of the tangential force: -R n x F_t on both (contact point -R_i n from i, +R_j n from j).
+          const Vec3 nxf = cross(g.normal, c.tangential);
+          fi += c.force;
+          tqi += c.rollingTorque - ri * nxf;
+          const Vec3 tqj = -rj * nxf - c.rollingTorque;
+          if (j < end) {
+            force[j] -= c.force;
+            torque[j] += tqj;
+          } else {
+            bufferForce[j - end] -= c.force;
+            bufferTorque[j - end] += tqj;
+            touchedLo = std::min(touchedLo, j);
+            touchedHi = std::max(touchedHi, j + 1);
+          }
+        }
+        force[i] += fi;
+        torque[i] += tqi;
+      }
       if (withWalls) wallContactsOfParticle<N, R, C>(p, wallList, table, walls, dt, i);
       // Half list: all contributions to i come from rows <= i; in the first block none come from
       // other threads, so the force is final here and the kick can use it while it is in cache.
       if (t == 0 && halfKick != 0.0) kick(i);
     }
+    initialiseUpTo(end);
     if (t < team - 1) {
       buffers.lo[t] = touchedLo;
       buffers.hi[t] = touchedHi;
     }
+    if (team > 1) {
 #pragma omp barrier
-    // Add the partner buffers in thread order, each thread over its own block.
-    for (int s = 0; s < team - 1; ++s) {
-      const std::size_t from = std::max<std::size_t>(begin, buffers.lo[s]);
-      const std::size_t to = std::min<std::size_t>(end, buffers.hi[s]);
-      for (std::size_t i = from; i < to; ++i) {
-        force[i] += buffers.force[s][i];
-        torque[i] += buffers.torque[s][i];
-        buffers.force[s][i] = Vec3{};
-        buffers.torque[s][i] = Vec3{};
+      // Add the partner buffers in thread order, each thread over its own block.
+      for (int s = 0; s < team - 1; ++s) {
+        const std::size_t from = std::max<std::size_t>(begin, buffers.lo[s]);
+        const std::size_t to = std::min<std::size_t>(end, buffers.hi[s]);
+        const std::size_t offset = PartnerBuffers::blockEnd(n, s, team);
+        Vec3* fs = buffers.force[s].data();
+        Vec3* ts = buffers.torque[s].data();
+        for (std::size_t i = from; i < to; ++i) {
+          force[i] += fs[i - offset];
+          torque[i] += ts[i - offset];
+          fs[i - offset] = Vec3{};
+          ts[i - offset] = Vec3{};
+        }
       }
+      if (t > 0 && halfKick != 0.0)
+        for (std::size_t i = begin; i < end; ++i) kick(i);
     }
-    if (t > 0 && halfKick != 0.0)
-      for (std::size_t i = begin; i < end; ++i) kick(i);
   }
 }
 

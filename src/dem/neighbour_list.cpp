@@ -143,23 +143,26 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
   const std::int64_t oldRows = oldStart.empty() ? 0 : static_cast<std::int64_t>(oldStart.size()) - 1;
 
   parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t i) {
-    std::uint32_t k = rowStart[i];
+    const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
+    std::uint32_t k = first;
+    forEachPartner(static_cast<std::size_t>(i), [&](std::uint32_t j) { partner[k++] = j; });
+    // Ascending partners: the force loop walks memory forwards and knows the row's last partner.
+    std::sort(partner.begin() + first, partner.begin() + last);
     const std::int64_t oi = i < static_cast<std::int64_t>(previousIndex.size()) ? previousIndex[i] : -1;
-    forEachPartner(static_cast<std::size_t>(i), [&](std::uint32_t j) {
-      partner[k] = j;
+    if (oi < 0 || oi >= oldRows) return;
+    for (k = first; k < last; ++k) {
+      const std::uint32_t j = partner[k];
       const std::int64_t oj = j < previousIndex.size() ? previousIndex[j] : -1;
-      if (oi >= 0 && oj >= 0 && oi < oldRows && oj < oldRows) {
-        const std::int64_t owner = std::min(oi, oj), other = std::max(oi, oj);
-        for (std::uint32_t q = oldStart[owner]; q < oldStart[owner + 1]; ++q)
-          if (oldPartner[q] == static_cast<std::uint32_t>(other)) {
-            const double sign = oi < oj ? 1.0 : -1.0;
-            tangentialHistory[k] = sign * oldTangential[q];
-            if (carryRolling) rollingHistory[k] = sign * oldRolling[q];
-            break;
-          }
-      }
-      ++k;
-    });
+      if (oj < 0 || oj >= oldRows) continue;
+      const std::int64_t owner = std::min(oi, oj), other = std::max(oi, oj);
+      for (std::uint32_t q = oldStart[owner]; q < oldStart[owner + 1]; ++q)
+        if (oldPartner[q] == static_cast<std::uint32_t>(other)) {
+          const double sign = oi < oj ? 1.0 : -1.0;
+          tangentialHistory[k] = sign * oldTangential[q];
+          if (carryRolling) rollingHistory[k] = sign * oldRolling[q];
+          break;
+        }
+    }
   });
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // Linked cells + Verlet lists with a skin (Allen & Tildesley, Computer Simulation of Liquids,
-// sec. 5.3). Half list in compressed rows: row i holds partners j > i with
+// sec. 5.3). Half list in compressed rows: row i holds partners j > i (ascending) with
 // |x_i - x_j| < r_i + r_j + skin. Each entry carries its contact history, which is carried over
 // on every rebuild, also when particles were reordered, removed or inserted in between.
 #include <cstdint>

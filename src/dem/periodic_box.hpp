@@ -11,6 +11,7 @@ struct PeriodicBox {
   bool anyPeriodic = false;
   double length[3] = {0.0, 0.0, 0.0};
   double lower[3] = {0.0, 0.0, 0.0};
+  double half[3] = {0.0, 0.0, 0.0};  // length / 2
 
   PeriodicBox() = default;
   explicit PeriodicBox(const Domain& d) {
@@ -18,14 +19,19 @@ struct PeriodicBox {
       periodic[a] = d.periodic[a];
       length[a] = d.max[a] - d.min[a];
       lower[a] = d.min[a];
+      half[a] = 0.5 * length[a];
     }
     anyPeriodic = periodic[0] || periodic[1] || periodic[2];
   }
-  /// Shortest image of a separation vector.
+  /// Shortest image of a separation vector of two positions inside the box (|d| < length, as
+  /// wrap() keeps them): one compare per axis instead of a division and a rounding call.
   Vec3 minimumImage(Vec3 d) const {
     if (!anyPeriodic) return d;
     for (int a = 0; a < 3; ++a)
-      if (periodic[a]) d[a] -= length[a] * std::nearbyint(d[a] / length[a]);
+      if (periodic[a]) {
+        if (d[a] > half[a]) d[a] -= length[a];
+        else if (d[a] < -half[a]) d[a] += length[a];
+      }
     return d;
   }
   /// Maps a position back into the box in periodic directions.

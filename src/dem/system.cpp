@@ -190,15 +190,29 @@ void System::rebuild(std::vector<std::uint32_t> order, std::size_t listedRows) {
   positionAtBuild_ = particles_.position;
   timeAtBuild_ = time_;
   ++rebuilds_;
+  updateInverseInertia();
+}
+
+void System::updateInverseInertia() {
+  const ParticleSet& p = particles_;
+  inverseMass_.resize(p.size());
+  inverseMoment_.resize(p.size());
+  parallelFor(static_cast<std::int64_t>(p.size()), [&](std::int64_t i) {
+    inverseMass_[i] = 1.0 / p.mass[i];
+    inverseMoment_[i] = 1.0 / p.inertia(i);  // solid sphere, 2/5 m r^2
+  });
 }
 
 void System::computeForces(double dt, double halfKick) {
   ScopedPhase timer(timers_, Phase::Contacts);
-  const WallState walls{&primitives_, &wallMaterial_, &wallVelocity_, &wallAngularVelocity_, &wallCentre_};
+  bool hasTriangles = false;
+  for (const WallPrimitive& w : primitives_) hasTriangles |= w.kind == PrimitiveKind::Triangle;
+  const WallState walls{&primitives_, &wallMaterial_, &wallVelocity_, &wallAngularVelocity_, &wallCentre_,
+                        hasTriangles};
   dispatchLaws(table_.normalLaw(), table_.rollingLaw(), table_.cohesionLaw(),
                [&]<NormalLaw N, RollingLaw R, CohesionLaw C>() {
                  contactForcesAndKick<N, R, C>(particles_, list_, wallList_, walls, table_, box_, gravity_, dt,
-                                               halfKick, buffers_);
+                                               halfKick, {inverseMass_.data(), inverseMoment_.data()}, buffers_);
                });
 }
 
@@ -211,15 +225,21 @@ void System::step(double dt) {
     // the largest displacement since the last list build comes with the drift.
     ScopedPhase timer(timers_, Phase::Integration);
     const bool tracked = positionAtBuild_.size() == p.size();
+    const double halfDt = 0.5 * dt;
+    const double* inverseMass = inverseMass_.data();
+    const double* inverseMoment = inverseMoment_.data();
+    Vec3* x = p.position.data();
+    Vec3* v = p.velocity.data();
+    Vec3* w = p.angularVelocity.data();
+    const Vec3* f = p.force.data();
+    const Vec3* tq = p.torque.data();
+    const Vec3* x0 = positionAtBuild_.data();
 #pragma omp parallel for schedule(static) reduction(max : maxDisplacement2)
     for (std::int64_t i = 0; i < n; ++i) {
-      const double invMass = 1.0 / p.mass[i];
-      p.velocity[i] += (0.5 * dt * invMass) * p.force[i];
-      p.angularVelocity[i] += (0.5 * dt * invMass / (0.4 * p.radius[i] * p.radius[i])) * p.torque[i];
-      p.position[i] = box_.wrap(p.position[i] + dt * p.velocity[i]);
-      if (tracked)
-        maxDisplacement2 =
-            std::max(maxDisplacement2, normSquared(box_.minimumImage(p.position[i] - positionAtBuild_[i])));
+      v[i] += (halfDt * inverseMass[i]) * f[i];
+      w[i] += (halfDt * inverseMoment[i]) * tq[i];
+      x[i] = box_.wrap(x[i] + dt * v[i]);
+      if (tracked) maxDisplacement2 = std::max(maxDisplacement2, normSquared(box_.minimumImage(x[i] - x0[i])));
     }
   }
   time_ += dt;
@@ -290,7 +310,9 @@ ContactStatistics System::contactStatistics() const {
     }
     for (std::uint32_t k = wallList_.rowStart[i]; k < wallList_.rowStart[i + 1]; ++k) {
       const WallPrimitive& w = primitives_[wallList_.primitive[k]];
-      const double overlap = w.active ? p.radius[i] - distanceToPrimitive(w, p.position[i]).distance : 0.0;
+      // Entries without force are not in contact (or mesh duplicates of another triangle's contact).
+      const bool carries = wallList_.force[k] != Vec3{};
+      const double overlap = w.active && carries ? p.radius[i] - distanceToPrimitive(w, p.position[i]).distance : 0.0;
       if (overlap <= 0.0) continue;
       ++s.wallContacts;
       s.maxOverlapRatio = std::max(s.maxOverlapRatio, overlap / p.radius[i]);
@@ -323,7 +345,8 @@ EnergyBalance System::energy() const {
     }
     for (std::uint32_t k = wallList_.rowStart[i]; k < wallList_.rowStart[i + 1]; ++k) {
       const WallPrimitive& w = primitives_[wallList_.primitive[k]];
-      const double overlap = w.active ? p.radius[i] - distanceToPrimitive(w, p.position[i]).distance : 0.0;
+      const bool carries = wallList_.force[k] != Vec3{};  // mesh duplicates carry no force
+      const double overlap = w.active && carries ? p.radius[i] - distanceToPrimitive(w, p.position[i]).distance : 0.0;
       if (overlap > 0.0) e.elastic += stored(table_.pair(p.type[i], wallMaterial_[w.wall]), p.radius[i], overlap);
     }
   }
@@ -343,6 +366,7 @@ std::size_t System::memoryBytes() const {
             wallList_.force.capacity() + wallList_.point.capacity()) *
                sizeof(Vec3);
   for (const auto& b : buffers_.force) bytes += 2 * b.capacity() * sizeof(Vec3);
+  bytes += (inverseMass_.capacity() + inverseMoment_.capacity()) * sizeof(double);
   return bytes;
 }
 
@@ -375,6 +399,7 @@ void System::load(BinaryReader& in) {
   list_.load(in);
   wallList_.load(in);
   positionAtBuild_ = in.getVector<Vec3>();
+  updateInverseInertia();
   if (list_.rows() != particles_.size() || positionAtBuild_.size() != particles_.size())
     throw CheckpointError("checkpoint is corrupt: DEM lists do not match the particles");
   for (auto& ins : inserters_) ins->load(in);

@@ -93,6 +93,7 @@ class System {
   bool needsRebuild(double maxParticleDisplacement) const;
   void rebuild(std::vector<std::uint32_t> order, std::size_t listedRows);
   void computeForces(double dt, double halfKick);
+  void updateInverseInertia();
 
   Domain domain_;
   PeriodicBox box_;
@@ -105,6 +106,7 @@ class System {
   WallContactList wallList_;
   PartnerBuffers buffers_;
   std::vector<Vec3> positionAtBuild_;
+  std::vector<double> inverseMass_, inverseMoment_;  // 1/m, 1/I per particle (updated with the lists)
   double timeAtBuild_ = 0.0;
   long long rebuilds_ = 0;
 

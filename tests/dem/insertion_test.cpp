@@ -80,6 +80,39 @@ insertion:
   EXPECT_EQ(c->contactStatistics().particleContacts, 0);
 }
 
+// Above the random-sequential-addition range (~0.3) random_packing uses a jittered FCC lattice:
+// the requested fraction is reached (to one particle), nothing overlaps, all inside the region.
+TEST(DemInsertion, RandomPackingReachesHighVolumeFractionOnJitteredLattice) {
+  const std::pair<double, const char*> cases[] = {
+      {0.45, "{distribution: discrete, diameters: [0.0018, 0.002], mass_fractions: [0.5, 0.5]}"},
+      {0.6, "{diameter: 0.002}"}};
+  for (const auto& [fraction, size] : cases) {
+    DemCase c(materialsYaml("hertz_mindlin", 0.5, 0.5) + fmt::format(R"(
+domain: {{min: [0, 0, 0], max: [0.02, 0.02, 0.03]}}
+insertion:
+  - {{type: random_packing, min: [0, 0, 0], max: [0.02, 0.02, 0.03], volume_fraction: {}, seed: 4,
+     size: {}}}
+)",
+                                                                      fraction, size),
+              {0, 0, 0});
+    const ParticleSet& p = c->particles();
+    double solid = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      solid += 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius[i], 3);
+      for (int a = 0; a < 3; ++a) {
+        ASSERT_GE(p.position[i][a] - p.radius[i], -1e-12);
+        ASSERT_LE(p.position[i][a] + p.radius[i], (a == 2 ? 0.03 : 0.02) + 1e-12);
+      }
+    }
+    EXPECT_NEAR(solid / 1.2e-5, fraction, 0.005);
+    EXPECT_EQ(c->contactStatistics().particleContacts, 0);  // no pair within r_i + r_j
+    // Not a perfect lattice: the positions are jittered.
+    double spread = 0.0;
+    for (std::size_t i = 1; i < p.size(); ++i) spread += std::abs(p.position[i].x - p.position[0].x);
+    EXPECT_GT(spread, 0.0);
+  }
+}
+
 TEST(DemInsertion, RateInsertionDeliversMassFlowAndOutletCountsRemovedMass) {
   DemCase c(materialsYaml("hertz_mindlin", 0.5, 0.5) + R"(
 domain: {min: [0, 0, -0.1], max: [0.02, 0.02, 0.05]}

@@ -10,6 +10,7 @@
 
 #include "core/vec3.hpp"
 #include "dem/contact/contact_law.hpp"
+#include "dem/contact/fast_sqrt.hpp"
 #include "dem/contact/hertz_mindlin.hpp"
 #include "dem/contact/hooke.hpp"
 #include "dem/contact/rolling_resistance.hpp"
@@ -43,7 +44,7 @@ inline void projectOntoTangentPlane(Vec3& h, const Vec3& n) {
   h -= hn * n;
   if (hn * hn <= 1e-10 * before) return;
   const double after = normSquared(h);
-  if (after > 0.0) h *= std::sqrt(before / after);
+  if (after > 0.0) h *= sqrtNonNegative(before / after);
 }
 
 template <NormalLaw N, RollingLaw R, CohesionLaw C>
@@ -55,10 +56,10 @@ inline ContactResult contactForce(const PairCoefficients& c, const ContactGeomet
   double elastic, gammaN, kt, knLinear;
   if constexpr (N == NormalLaw::HertzMindlin) {
     // One square root for all Hertz-Mindlin terms: sqrt(R* d) (see hertz_mindlin.hpp).
-    const double sqrtRd = std::sqrt(g.effectiveRadius * g.overlap);
+    const double sqrtRd = sqrtNonNegative(g.effectiveRadius * g.overlap);
     const double kHertzSqrtD = 4.0 / 3.0 * c.effectiveYoungs * sqrtRd;  // k_hz sqrt(d)
     elastic = kHertzSqrtD * g.overlap;
-    gammaN = c.damping * std::sqrt(g.effectiveMass * kHertzSqrtD);
+    gammaN = c.damping * sqrtNonNegative(g.effectiveMass * kHertzSqrtD);
     kt = 8.0 * c.effectiveShear * sqrtRd;
     knLinear = 1.5 * kHertzSqrtD;
   } else {
@@ -81,7 +82,7 @@ inline ContactResult contactForce(const PairCoefficients& c, const ContactGeomet
   const double ftMax = c.friction * normalForce;
   const double ftMag2 = normSquared(ft);
   if (ftMag2 > ftMax * ftMax) {
-    ft *= ftMax / std::sqrt(ftMag2);
+    ft *= ftMax / sqrtNonNegative(ftMag2);
     tangentialHistory = (kt > 0.0) ? (-1.0 / kt) * (ft + gammaT * vt) : Vec3{};
   }
 

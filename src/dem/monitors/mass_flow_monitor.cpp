@@ -1,7 +1,11 @@
 // Mass crossing a plane: cumulative net mass in the direction of the normal and the mean rate
 // since the previous sample. Tracks which side each particle (by id) was on at the last sample;
-// sample often enough that no particle crosses twice between samples.
+// sample often enough that no particle crosses twice between samples. The per-particle sides,
+// the running total and the last sample time are checkpointed, so a restarted run writes the
+// same numbers as an uninterrupted one.
+#include <algorithm>
 #include <unordered_map>
+#include <utility>
 
 #include "core/monitor.hpp"
 #include "dem/system.hpp"
@@ -32,6 +36,31 @@ class MassFlowMonitor final : public Monitor {
     const double rate = s.time > lastTime_ ? crossed / (s.time - lastTime_) : 0.0;
     lastTime_ = s.time;
     return {total_, rate};
+  }
+  void save(BinaryWriter& out) const override {
+    out.put(total_);
+    out.put(lastTime_);
+    // Sorted by id: the checkpoint does not depend on the hash map's iteration order.
+    std::vector<std::int64_t> ids;
+    std::vector<std::uint8_t> beyond;
+    ids.reserve(previous_.size());
+    for (const auto& entry : previous_) ids.push_back(entry.first);
+    std::sort(ids.begin(), ids.end());
+    beyond.reserve(ids.size());
+    for (std::int64_t id : ids) beyond.push_back(previous_.at(id) ? 1 : 0);
+    out.putVector(ids);
+    out.putVector(beyond);
+  }
+  void load(BinaryReader& in) override {
+    total_ = in.get<double>();
+    lastTime_ = in.get<double>();
+    const std::vector<std::int64_t> ids = in.getVector<std::int64_t>();
+    const std::vector<std::uint8_t> beyond = in.getVector<std::uint8_t>();
+    if (ids.size() != beyond.size())
+      throw CheckpointError("checkpoint is corrupt: mass_flow monitor arrays do not match");
+    previous_.clear();
+    previous_.reserve(ids.size());
+    for (std::size_t k = 0; k < ids.size(); ++k) previous_[ids[k]] = beyond[k] != 0;
   }
 
  private:

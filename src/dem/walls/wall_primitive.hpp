@@ -28,7 +28,10 @@ struct WallDistance {
 };
 
 /// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, sec. 5.1.5).
-inline Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+/// `onFace` (if given) is set to true when the point lies inside the face (not on an edge or vertex).
+inline Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
+                                   bool* onFace = nullptr) {
+  if (onFace) *onFace = false;
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
   if (d1 <= 0.0 && d2 <= 0.0) return a;
@@ -45,8 +48,14 @@ inline Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, 
   const double va = d3 * d6 - d5 * d4;
   if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
     return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  if (onFace) *onFace = true;
   const double denom = 1.0 / (va + vb + vc);
   return a + (vb * denom) * ab + (vc * denom) * ac;
+}
+
+/// True if point x lies on triangle w (within `tolerance`, m).
+inline bool pointOnTriangle(const WallPrimitive& w, const Vec3& x, double tolerance) {
+  return normSquared(x - closestPointOnTriangle(x, w.a, w.b, w.c)) <= tolerance * tolerance;
 }
 
 inline WallDistance distanceToPrimitive(const WallPrimitive& w, const Vec3& x) {
