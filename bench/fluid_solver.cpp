@@ -100,7 +100,8 @@ void BM_FluidBedStep(benchmark::State& state) {
   const std::string yaml =
       "domain: {min: [0, 0, 0], max: [0.015, 0.15, 0.45]}\nfluid:\n  density: 1.2\n  viscosity: 1.8e-5\n"
       "  cells: [2, 30, 90]\n  boundaries:\n    x_min: {type: slip}\n    x_max: {type: slip}\n"
-      "    z_min: {type: inlet, velocity: [0, 0, 1.875]}\n    z_max: {type: pressure_outlet}\n";
+      "    z_min: {type: inlet, velocity: [0, 0, 1.875]}\n    z_max: {type: pressure_outlet}\n"
+      "  pressure: {tolerance: 1e-6}\n";
   gf::Params p = gf::Params::loadString(yaml, "bench.yaml");
   const gf::Domain domain = gf::Domain::read(p);
   gf::fluid::Solver solver(p, domain, gf::Vec3{0.0, 0.0, -9.81});

@@ -77,13 +77,14 @@ void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool,
   buildDiagonal(levels_[0], dirichlet_);
   std::size_t count = 1;
   while (levels_[count - 1].cells() > kCoarsestCells) {
-    // Coarsen by 2 every axis with more than 2 cells (odd counts: the last coarse cell covers one
-    // fine cell); an axis of 1 or 2 cells (the depth of a pseudo-2D bed) is not coarsened any
-    // more (semi-coarsening), so thin directions never stop the others.
+    // Coarsen by 2 every axis with more than 1 cell (odd counts: the last coarse cell covers one
+    // fine cell; a 2-cell axis, the depth of a pseudo-2D bed, goes to 1: kept at 2 its coupling
+    // would grow 4x per level relative to the others and point smoothing would stall -- twice the
+    // CG iterations on 2 x 30 x 90).
     std::array<int, 3> f{1, 1, 1};
     bool any = false;
     for (int a = 0; a < 3; ++a) {
-      if (levels_[count - 1].n[a] > 2) {
+      if (levels_[count - 1].n[a] > 1) {
         f[a] = 2;
         any = true;
       }
@@ -257,7 +258,20 @@ void MultigridPoisson::coarsen(const PoissonLevel& fine, PoissonLevel& coarse, c
             if (F[b] >= fine.n[b] || F[c] >= fine.n[c]) continue;  // odd axis: one child only
             sum += fine.T[a][fine.faceIndex(a, F[0], F[1], F[2])];
           }
-        coarse.T[a][coarse.faceIndex(a, I, J, K)] = sum / f[a];
+        // Rediscretisation: divide by the coarse centre distance in fine cells, (size of the
+        // block below + size above) / 2, or the adjacent block's size at a non-periodic boundary
+        // face (there the operator doubles T: half a block to the boundary). 2 everywhere for
+        // even counts; odd counts leave a last block of 1 cell.
+        double distance = 1.0;
+        if (f[a] == 2) {
+          const int nc = coarse.n[a], nf = fine.n[a];
+          auto blockSize = [&](int I) { return std::min(2, nf - 2 * I); };
+          const int below = C[a] > 0 ? C[a] - 1 : (fine.periodic[a] ? nc - 1 : -1);
+          const int above = C[a] < nc ? C[a] : (fine.periodic[a] ? 0 : -1);
+          if (below >= 0 && above >= 0) distance = 0.5 * (blockSize(below) + blockSize(above));
+          else distance = blockSize(below >= 0 ? below : above);
+        }
+        coarse.T[a][coarse.faceIndex(a, I, J, K)] = sum / distance;
       }
     });
   }

@@ -7,9 +7,9 @@
 // with face transmissibilities T_f = beta_f * area_f / spacing_f >= 0 (beta = eps-weighted
 // 1/(rho gamma0/dt + K)); A is symmetric positive (semi-)definite.
 //
-// Multigrid: cell-centred coarsening by 2 in every direction with more than 2 cells (odd counts
-// leave a last coarse cell of one fine cell; thin axes are not coarsened: semi-coarsening), coarse
-// transmissibility = sum of the covered fine ones / coarsening factor along the face normal
+// Multigrid: cell-centred coarsening by 2 in every direction with more than 1 cell (odd counts
+// leave a last coarse cell of one fine cell), coarse
+// transmissibility = sum of the covered fine ones / distance of the coarse centres in fine cells
 // (rediscretisation), restriction = sum of children, prolongation = piecewise constant
 // (its transpose), red-black Gauss-Seidel smoothing (red-black before, black-red after, so the
 // V-cycle is a symmetric operator and CG stays valid), a dense Cholesky solve on the coarsest
