@@ -18,6 +18,7 @@ Solver::Solver(Params& root, const Domain& domain, const Vec3& gravity) : domain
   Params fluid = root.section({"fluid", "-", "incompressible (volume-averaged) Navier-Stokes solver"});
   readParams(fluid, domain);
   coupling_ = CouplingFields(grid_);
+  bc_.voidFraction = &coupling_.voidFraction;
   for (int c = 0; c < 3; ++c) {
     const auto st = static_cast<Staggering>(c + 1);
     u_[c] = Field(grid_, st);
@@ -157,9 +158,9 @@ void Solver::buildUnknownMasks() {
 }
 
 void Solver::fillAllGhosts() {
+  fillCellGhosts(coupling_.voidFraction, bc_, CellGhostKind::ZeroGradient);  // first: superficial inlets use it
   for (int c = 0; c < 3; ++c) fillVelocityGhosts(u_[c], c, bc_, GhostMode::Full);
   fillCellGhosts(p_, bc_, CellGhostKind::Pressure);
-  fillCellGhosts(coupling_.voidFraction, bc_, CellGhostKind::ZeroGradient);
   fillCellGhosts(coupling_.voidFractionOld, bc_, CellGhostKind::ZeroGradient);
   fillCellGhosts(epsOlder_, bc_, CellGhostKind::ZeroGradient);
   fillCellGhosts(coupling_.dragCoefficient, bc_, CellGhostKind::ZeroGradient);
@@ -221,6 +222,7 @@ void Solver::setScalar(const std::function<double(const Vec3&)>& f) {
 void Solver::step(double dt) {
   ScopedPhase timer(timers_, Phase::Fluid);
   bc_.time = time_ + dt;  // prescribed (ramped) boundary velocities at the new time level
+  bc_.voidFraction = &coupling_.voidFraction;  // (the solver may have been moved)
   fillAllGhosts();
   const auto& eps = coupling_.voidFraction.data();
   const auto& epsOld = coupling_.voidFractionOld.data();
