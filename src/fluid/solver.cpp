@@ -1,11 +1,15 @@
 #include "fluid/solver.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 
+#include "dem/walls/stl_reader.hpp"
 #include "fluid/loops.hpp"
+#include "fluid/solid_mesh.hpp"
 
 namespace gf::fluid {
 
@@ -107,13 +111,34 @@ void Solver::readParams(Params& fluid, const Domain& domain) {
 }
 
 void Solver::markBlocked(Params& fluid) {
-  for (Params& b : fluid.list({"blocked", "-", "solid (blocked) regions: boxes and cylinders"})) {
-    const std::string shape = b.choice({"shape", "-", "box or cylinder"}, {"box", "cylinder"});
+  for (Params& b : fluid.list({"blocked", "-", "solid (blocked) regions: boxes, cylinders and closed STL meshes"})) {
+    const std::string shape =
+        b.choice({"shape", "-", "box, cylinder or stl (cells whose centre is inside a closed triangle mesh)"},
+                 {"box", "cylinder", "stl"});
     const Vec3 lo = b.vec3({"min", "m", "box lower corner"}, Vec3{});
     const Vec3 hi = b.vec3({"max", "m", "box upper corner"}, Vec3{});
     const Vec3 centre = b.vec3({"centre", "m", "cylinder: a point on the axis"}, Vec3{});
     const int axis = axisFromName(b.choice({"axis", "-", "cylinder axis direction"}, {"x", "y", "z"}, "z"));
     const double radius = b.real({"radius", "m", "cylinder radius"}, 0.0);
+    const std::string file =
+        b.text({"file", "-", "stl: path of a closed ASCII or binary STL mesh (relative to the case file)"}, "");
+    const double scale =
+        b.real({"scale", "-", "stl: factor applied to the coordinates (e.g. 0.001 for mm)", Range::positive()}, 1.0);
+    const Vec3 offset = b.vec3({"offset", "m", "stl: translation applied after scaling"}, Vec3{});
+    if (b.documenting()) continue;
+    std::optional<SolidMesh> mesh;
+    if (shape == "stl") {
+      std::filesystem::path path(file);
+      if (path.is_relative()) path = std::filesystem::path(b.fileName()).parent_path() / path;
+      try {
+        auto triangles = dem::readStl(path.string());
+        for (auto& t : triangles)
+          for (Vec3& v : t) v = scale * v + offset;
+        mesh.emplace(std::move(triangles));
+      } catch (const Error& e) {
+        b.fail("file", "'" + file + "'", std::string("a readable STL file (") + e.what() + ")");
+      }
+    }
     for (int k = 0; k < grid_.cells[2]; ++k)
       for (int j = 0; j < grid_.cells[1]; ++j)
         for (int i = 0; i < grid_.cells[0]; ++i) {
@@ -121,11 +146,13 @@ void Solver::markBlocked(Params& fluid) {
           bool inside;
           if (shape == "box") {
             inside = x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z;
-          } else {
+          } else if (shape == "cylinder") {
             double r2 = 0.0;
             for (int a = 0; a < 3; ++a)
               if (a != axis) r2 += (x[a] - centre[a]) * (x[a] - centre[a]);
             inside = r2 <= radius * radius;
+          } else {
+            inside = mesh->contains(x);
           }
           if (inside) blocked_[p_.index(i, j, k)] = 1;
         }
