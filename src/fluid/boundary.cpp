@@ -198,6 +198,7 @@ void fillCellGhosts(Field& f, const Boundaries& bc, CellGhostKind kind) {
       });
       continue;
     }
+    if (kind == CellGhostKind::PeriodicOnly) continue;
     for (int s = 0; s < 2; ++s) {
       const BoundarySide& side = bc.at(a, s);
       bool dirichlet = false;

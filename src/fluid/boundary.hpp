@@ -56,7 +56,9 @@ double inletNormalVelocity(const Boundaries& bc, int axis, int side, const Carte
 void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode);
 
 /// Kinds of cell-centred ghost fill.
-enum class CellGhostKind { ZeroGradient, Pressure, PressureIncrement, Scalar };
+/// PeriodicOnly: wrap-around ghosts of periodic axes only (fields read at momentum faces only:
+/// their non-periodic ghosts are never used).
+enum class CellGhostKind { ZeroGradient, Pressure, PressureIncrement, Scalar, PeriodicOnly };
 void fillCellGhosts(Field& f, const Boundaries& bc, CellGhostKind kind);
 
 }  // namespace gf::fluid

@@ -1,6 +1,7 @@
 // Momentum predictor: convection (explicit, extrapolated), BDF2 time derivative, implicit
 // viscous and drag terms solved with Jacobi-preconditioned BiCGStab per velocity component.
 #include <cmath>
+#include <limits>
 
 #include "fluid/loops.hpp"
 #include "fluid/schemes.hpp"
@@ -366,25 +367,30 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
     Uo[q] = Un[q];  // u^{n-1} <- u^n for the next step
   });
   fillVelocityGhosts(x, c, bc_, GhostMode::Full);
-  applyHelmholtz(c, x, krylov_[5], dt, g0);
-  parallelForElements(n, [&](std::int64_t q) {
-    r[q] = mask[q] ? B[q] - t[q] : 0.0;
-    rhat[q] = r[q];
-    p[q] = 0.0;
-    v[q] = 0.0;
-    t[q] = 0.0;
-    s[q] = 0.0;
-  });
   const double bnorm = std::sqrt(parallelSumElements(n, [&](std::int64_t q) { return mask[q] ? B[q] * B[q] : 0.0; }));
   const double tol = momentumTolerance_ * (bnorm > 0.0 ? bnorm : 1.0);
-  double rnorm = std::sqrt(dot(r, r));
   int it = 0;
   // Strongly diagonally dominant systems (small mu dt / h^2): plain Jacobi sweeps are much
   // cheaper than BiCGStab iterations; BiCGStab takes over if they stall.
   double offRatio = 0.0;
   for (int d = 0; d < dims; ++d) offRatio += 2.0 * mu_ / (grid_.spacing[d] * grid_.spacing[d]);
   offRatio /= rho_ * g0 / dt + offRatio;
-  if (offRatio < 0.6 && uniformCoupling_) {
+  const bool chebyshev = offRatio < 0.6 && uniformCoupling_;
+  // Residual and BiCGStab vectors (the Chebyshev sweeps compute their own residual).
+  auto initialiseKrylov = [&]() {
+    applyHelmholtz(c, x, krylov_[5], dt, g0);
+    return std::sqrt(parallelSumElements(n, [&](std::int64_t q) {
+      r[q] = mask[q] ? B[q] - t[q] : 0.0;
+      rhat[q] = r[q];
+      p[q] = 0.0;
+      v[q] = 0.0;
+      t[q] = 0.0;
+      s[q] = 0.0;
+      return r[q] * r[q];
+    }));
+  };
+  double rnorm = chebyshev ? std::numeric_limits<double>::infinity() : initialiseKrylov();
+  if (chebyshev) {
     // eps = 1, K = 0: fused sweep (one pass + ghost fill per sweep), ping-pong with y, with
     // Chebyshev acceleration (Golub and Varga 1961; Saad, Iterative Methods 2003, sec. 12.3): the
     // Jacobi iteration matrix I - D^-1 A has real eigenvalues in [-offRatio, offRatio]
@@ -404,17 +410,7 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
     }
     X = x.data().data();
     Y = y.data().data();
-    if (rnorm > tol) {  // stalled: residual of the current iterate for BiCGStab
-      applyHelmholtz(c, x, krylov_[5], dt, g0);
-      rnorm = std::sqrt(parallelSumElements(n, [&](std::int64_t q) {
-        r[q] = mask[q] ? B[q] - t[q] : 0.0;
-        return r[q] * r[q];
-      }));
-      parallelForElements(n, [&](std::int64_t q) {
-        rhat[q] = r[q];
-        t[q] = 0.0;
-      });
-    }
+    if (rnorm > tol) rnorm = initialiseKrylov();  // stalled: BiCGStab from the current iterate
   } else if (offRatio < 0.6) {
     const int maxSweeps = 40;
     while (rnorm > tol && it < maxSweeps) {

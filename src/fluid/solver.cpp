@@ -195,12 +195,14 @@ void Solver::fillAllGhosts() {
   fillCellGhosts(coupling_.voidFraction, bc_, CellGhostKind::ZeroGradient);  // first: superficial inlets use it
   for (int c = 0; c < 3; ++c) fillVelocityGhosts(u_[c], c, bc_, GhostMode::Full);
   fillCellGhosts(p_, bc_, CellGhostKind::Pressure);
-  fillCellGhosts(coupling_.voidFractionOld, bc_, CellGhostKind::ZeroGradient);
-  fillCellGhosts(epsOlder_, bc_, CellGhostKind::ZeroGradient);
+  // eps_old, eps_older, F and u_p are read only at momentum unknown faces (cell on each side:
+  // a ghost only across a periodic boundary); K also at pressure outlet faces.
+  fillCellGhosts(coupling_.voidFractionOld, bc_, CellGhostKind::PeriodicOnly);
+  fillCellGhosts(epsOlder_, bc_, CellGhostKind::PeriodicOnly);
   fillCellGhosts(coupling_.dragCoefficient, bc_, CellGhostKind::ZeroGradient);
   for (int c = 0; c < 3; ++c) {
-    fillCellGhosts(coupling_.forceDensity[c], bc_, CellGhostKind::ZeroGradient);
-    fillCellGhosts(coupling_.particleVelocity[c], bc_, CellGhostKind::ZeroGradient);
+    fillCellGhosts(coupling_.forceDensity[c], bc_, CellGhostKind::PeriodicOnly);
+    fillCellGhosts(coupling_.particleVelocity[c], bc_, CellGhostKind::PeriodicOnly);
   }
   if (scalarEnabled_) fillCellGhosts(scalar_, bc_, CellGhostKind::Scalar);
 }
