@@ -66,7 +66,9 @@ class MultigridPoisson {
   void buildDiagonal(PoissonLevel& L, const std::array<bool, 6>& dirichlet) const;
   void coarsen(const PoissonLevel& fine, PoissonLevel& coarse, const std::array<int, 3>& factor) const;
   void applyLevel(const PoissonLevel& L, const std::vector<double>& x, std::vector<double>& y) const;
+  void relaxLine(PoissonLevel& L, int j, int k, int colour) const;
   void smoothColour(PoissonLevel& L, int colour) const;
+  void smoothPair(PoissonLevel& L, int first) const;
   void symmetricGaussSeidel(PoissonLevel& L) const;
   void factorCoarsest();
   void solveCoarsest(PoissonLevel& L) const;
