@@ -51,6 +51,7 @@ int commandRun(const std::string& caseFile, const RunOptions& options) {
                 s.name.c_str(), simulation->dem().particles().size(), threadCount(), s.outputDirectory.c_str());
   std::fflush(stdout);
   const auto start = std::chrono::steady_clock::now();
+  const double startTime = simulation->time();
   RunStatus status;
   try {
     status = simulation->run();
@@ -68,7 +69,7 @@ int commandRun(const std::string& caseFile, const RunOptions& options) {
     return kExitInterrupted;
   }
   if (!options.quiet) {
-    std::printf("\n%s", simulation->timingTable(wall).c_str());
+    std::printf("\n%s", simulation->timingTable(wall, simulation->time() - startTime).c_str());
     std::printf("\noutput written to %s/\n", s.outputDirectory.c_str());
     if (s.outputInterval > 0.0 && s.writeParticles)
       std::printf("view it in ParaView: paraview %s/particles.pvd  (Glyph filter, scale by 'radius' x2, sphere glyphs)\n",

@@ -283,7 +283,9 @@ void Simulation::advance() {
   step_ += settings_.demStepsPerCouplingStep;
 }
 
-RunState Simulation::state() const { return RunState{time(), step_, dem_.get(), fluid_.get(), coupler_.get()}; }
+RunState Simulation::state() const {
+  return RunState{time(), step_, dem_.get(), fluid_.get(), coupler_.get(), settings_.gravity};
+}
 
 void Simulation::checkHealth() const {
   dem_->checkHealth(step_, time());
@@ -371,7 +373,7 @@ RunStatus Simulation::run() {
 
 // ------------------------------------------------------------------ report
 
-std::string Simulation::timingTable(double wallSeconds) const {
+std::string Simulation::timingTable(double wallSeconds, double simulatedSeconds) const {
   PhaseTimers total = dem_->timers();
   total.add(Phase::Output, appTimers_.seconds(Phase::Output));
   total.add(Phase::Coupling, appTimers_.seconds(Phase::Coupling));
@@ -391,6 +393,12 @@ std::string Simulation::timingTable(double wallSeconds) const {
   const double other = std::max(0.0, wallSeconds - accounted);
   out += fmt::format("{:<18} {:>10.3f} {:>6.1f}%\n", "other", other, wallSeconds > 0 ? 100.0 * other / wallSeconds : 0.0);
   out += fmt::format("{:<18} {:>10.3f}\n", "total", wallSeconds);
+  if (simulatedSeconds > 0.0) {
+    const double particleSteps = static_cast<double>(dem_->particles().size()) * simulatedSeconds / settings_.demStep;
+    out += fmt::format("throughput         {:.4g} s wall per simulated second", wallSeconds / simulatedSeconds);
+    if (particleSteps > 0.0) out += fmt::format(", {:.4g} ns per particle-step (all phases)", 1e9 * wallSeconds / particleSteps);
+    out += "\n";
+  }
   return out;
 }
 

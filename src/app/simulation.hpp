@@ -89,7 +89,9 @@ class Simulation {
   /// Every key of the case with its value (defaults filled in) and unit.
   const std::string& resolvedCase() const { return resolvedCaseText_; }
   RunState state() const;
-  std::string timingTable(double wallSeconds) const;
+  /// Wall time per phase for this invocation (simulatedSeconds: physical time it advanced), with
+  /// the throughput figures the benchmarks quote (s wall per simulated s, ns per particle-step).
+  std::string timingTable(double wallSeconds, double simulatedSeconds) const;
 
  private:
   void writeOutput();

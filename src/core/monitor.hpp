@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/registry.hpp"
+#include "core/vec3.hpp"
 #include "core/serialize.hpp"
 
 namespace gf {
@@ -28,6 +29,7 @@ struct RunState {
   const dem::System* dem = nullptr;
   const fluid::Solver* fluid = nullptr;
   const coupling::Coupler* coupling = nullptr;
+  Vec3 gravity;            // m/s^2, the case's
 };
 
 struct MonitorColumn {

@@ -145,3 +145,23 @@ TEST(CoupledBeds, TankDrainsThroughTheTapHole) {
   const auto balance = gf::io::readCsv(dir.file("o/coupling_balance.csv"));
   for (const auto& row : balance.rows) EXPECT_LT(row.at(4), 1e-12);
 }
+
+// Rayleigh-Taylor suspension of seed 001 sec. 3.3 (A = 0.286 column), first 0.03 s: the monitor's
+// Atwood number from the measured layer solid fraction and the densities matches seed 001 eq. 43
+// (rho_mix = 0.912 x 1 + 0.088 x 10 = 1.792 kg/m^3, A = 0.284) within 2 %; the layer is still sharp
+// (width within 3 cell layers of the 50 mm suspension: the exponential phase has just begun); the
+// exchange conserves momentum to round-off. The growth coefficient alpha is validated in
+// validation/cfddem_rayleigh_taylor.
+TEST(CoupledBeds, RayleighTaylorLayerStartsSharpWithSeedAtwoodNumber) {
+  TempDir dir;
+  const auto r = grainflow("run " + gf::testing::sourcePath("cases/cfddem_rayleigh_taylor.yaml") +
+                           " --quiet --threads 1 --end-time 0.03 --output " + dir.file("o"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const auto layer = gf::io::readCsv(dir.file("o/mixing_layer.csv"));
+  ASSERT_EQ(layer.header.at(4), "atwood_number [-]");
+  const double rhoMix = 0.912 * 1.0 + 0.088 * 10.0;
+  EXPECT_NEAR(layer.rows.back().at(4), (rhoMix - 1.0) / (rhoMix + 1.0), 0.02 * 0.284);
+  EXPECT_NEAR(layer.rows.back().at(1), 0.05, 3 * 0.15 / 128);
+  const auto balance = gf::io::readCsv(dir.file("o/coupling_balance.csv"));
+  for (const auto& row : balance.rows) EXPECT_LT(row.at(4), 1e-12);
+}
