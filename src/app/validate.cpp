@@ -17,6 +17,7 @@
 #include "app/validation_spec.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "fluid/solver.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv_series.hpp"
 
@@ -32,7 +33,7 @@ struct PlannedRun {
   std::size_t run = 0;  // index into item.runsFor(quick)
   std::string caseFile;
   std::string outputDirectory;
-  double work = 1.0;  // steps x (particles + 20), for the ETA
+  double work = 1.0;  // steps x (particles + 20) + 4 x fluid steps x cells, for the ETA
   long long steps = 0;
   std::size_t particles = 0;
 };
@@ -110,6 +111,9 @@ PlannedRun ValidationRun::planRun(std::size_t i, std::size_t k, const std::strin
     p.steps = std::llround(simulation->settings().endTime / simulation->settings().demStep);
     p.particles = simulation->dem().particles().size();
     p.work = static_cast<double>(p.steps) * (static_cast<double>(p.particles) + 20.0);  // + fixed cost per step
+    if (const fluid::Solver* fluid = simulation->fluid())  // a fluid cell step costs about 4 particle steps
+      p.work += 4.0 * static_cast<double>(fluid->grid().interiorCellCount()) * static_cast<double>(p.steps) /
+                std::max(1, simulation->settings().demStepsPerCouplingStep);
   } catch (const CaseError&) {
     std::fprintf(stderr, "grainflow: validation item '%s' (%s%s) has an invalid case:\n", item.name.c_str(), item.caseFile.c_str(),
                  overrides.empty() ? "" : " with the overrides of validation.yaml");
@@ -185,10 +189,12 @@ void ValidationRun::compare() {
     const auto& runs = item.runsFor(options_.quick);
     const std::string itemDirectory = (fs::path(options_.outputDirectory) / item.name).string();
     for (std::size_t q = 0; q < item.quantities.size(); ++q) {
-      const auto rows = compareQuantity(item, item.quantities[q], runs, extracted_[i][q], failures_[i]);
+      Quantity quantity = item.quantities[q];
+      quantity.tolerance = quantity.toleranceFor(options_.quick);  // quick_tolerance in --quick mode
+      const auto rows = compareQuantity(item, quantity, runs, extracted_[i][q], failures_[i]);
       rowsPerItem_[i].insert(rowsPerItem_[i].end(), rows.begin(), rows.end());
       if (options_.plots)
-        outcomes_[i].plots.push_back(writePlotSpec(item, item.quantities[q], runs, extracted_[i][q], rows, itemDirectory, plotSpecs_));
+        outcomes_[i].plots.push_back(writePlotSpec(item, quantity, runs, extracted_[i][q], rows, itemDirectory, plotSpecs_));
     }
     rows_.insert(rows_.end(), rowsPerItem_[i].begin(), rowsPerItem_[i].end());
   }

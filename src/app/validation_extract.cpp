@@ -107,8 +107,32 @@ double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
+double richardsonOrder(const std::vector<double>& x, const std::vector<double>& y) {
+  if (x.size() < 3 || x.size() != y.size()) throw std::invalid_argument("an observed order needs at least three runs");
+  const std::size_t n = x.size();
+  const double r1 = x[n - 2] / x[n - 3], r2 = x[n - 1] / x[n - 2];
+  if (!(r1 > 0.0) || r1 == 1.0 || std::abs(r2 / r1 - 1.0) > 1e-6)
+    throw std::invalid_argument("an observed order needs a constant refinement ratio between the last three runs");
+  const double ratio = r1 > 1.0 ? r1 : 1.0 / r1;
+  return std::log(std::abs(y[n - 3] - y[n - 2]) / std::abs(y[n - 2] - y[n - 1])) / std::log(ratio);
+}
+
+double minIncrement(const std::vector<double>& x, const std::vector<double>& y) {
+  if (x.size() < 2 || x.size() != y.size()) throw std::invalid_argument("an increment needs at least two points");
+  std::vector<std::size_t> order(x.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
+  double smallest = INFINITY;
+  for (std::size_t k = 1; k < order.size(); ++k) smallest = std::min(smallest, y[order[k]] - y[order[k - 1]]);
+  return smallest;
+}
+
 Comparison compareValue(double computed, double reference, const Tolerance& tolerance) {
   Comparison c{reference, computed, computed - reference, false};
+  if (tolerance.lowerBound) {
+    c.pass = std::isfinite(computed) && computed >= reference;
+    return c;
+  }
   if (tolerance.relative) c.error = reference == 0.0 ? (computed == 0.0 ? 0.0 : INFINITY) : c.error / std::abs(reference);
   c.pass = std::isfinite(c.error) && std::abs(c.error) <= tolerance.value;
   return c;

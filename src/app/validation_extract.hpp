@@ -35,12 +35,26 @@ std::optional<double> durationAbove(const Series& s, double threshold);
 /// Least-squares slope of log|y| over log|x| (observed order of convergence); needs >= 2 points.
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
 
+/// Observed order of convergence from the last three of a sequence of runs refined by a constant
+/// ratio r (x: the resolution parameter, cells or time step, in the order run; y: the result):
+/// p = ln(|y1 - y2| / |y2 - y3|) / ln(r), r = x2/x1 or x1/x2 (whichever is > 1). The exact
+/// solution is not needed: the leading error term C h^p cancels in the differences (Roache 1998,
+/// Verification and Validation in Computational Science and Engineering, eq. 5.4.1). Needs >= 3
+/// points and a constant ratio (std::invalid_argument otherwise).
+double richardsonOrder(const std::vector<double>& x, const std::vector<double>& y);
+
+/// Smallest increase y[k+1] - y[k] between consecutive points ordered by x (> 0: y increases
+/// strictly with x); needs >= 2 points.
+double minIncrement(const std::vector<double>& x, const std::vector<double>& y);
+
 struct Tolerance {
   double value = 0.0;
-  bool relative = false;  // relative to |reference|; for curves to max |reference|
+  bool relative = false;    // relative to |reference|; for curves to max |reference|
+  bool lowerBound = false;  // the reference is a lower bound: pass if computed >= reference (value unused)
 };
 
-/// One compared number: the error is signed (computed - reference), relative when the tolerance is.
+/// One compared number: the error is signed (computed - reference), relative when the tolerance is;
+/// with a lower-bound tolerance it passes when computed >= reference.
 struct Comparison {
   double reference = 0.0;
   double computed = 0.0;

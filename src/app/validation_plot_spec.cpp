@@ -68,6 +68,7 @@ std::string writePlotSpec(const Item& item, const Quantity& q, const std::vector
   const std::string png = (fs::path(itemDirectory) / fmt::format("{}_{}.png", item.name, slug(q.name))).string();
   std::vector<PlotSeries> series;
   std::string xLabel = q.plot.xLabel, yLabel = q.plot.yLabel, note;
+  PlotSpec axes = q.plot;
   const bool sweep = runs.size() > 1 || !item.sweepKey.empty();
   const Extracted* first = nullptr;
   for (const Extracted& e : extracted)
@@ -75,7 +76,11 @@ std::string writePlotSpec(const Item& item, const Quantity& q, const std::vector
   for (const Row& r : rows)
     if (r.comparison)
       note += fmt::format("{}{}: grainflow {:.5g}, reference {:.5g}{}", note.empty() ? "" : "\n",
-                          q.across == AcrossRuns::LogLogSlope ? "observed log-log slope" : r.runLabel.empty() ? q.name : r.runLabel,
+                          q.across == AcrossRuns::LogLogSlope       ? "observed log-log slope"
+                          : q.across == AcrossRuns::RichardsonOrder ? "observed order (last three runs)"
+                          : q.across == AcrossRuns::MinIncrement    ? "smallest increase between runs"
+                          : r.runLabel.empty()                      ? q.name
+                                                                    : r.runLabel,
                           r.comparison->computed, r.comparison->reference, q.operation == Operation::Curve ? " (worst point)" : "");
   if (q.operation == Operation::Curve || !sweep) {
     // The monitor curve(s) of each run; the reference points or value on top.
@@ -102,7 +107,24 @@ std::string writePlotSpec(const Item& item, const Quantity& q, const std::vector
       }
     if (xLabel.empty()) xLabel = item.sweepLabel;
     if (yLabel.empty()) yLabel = q.name;
-    if (q.across == AcrossRuns::LogLogSlope && computed.x.size() >= 1 && q.reference.value) {
+    if (q.across == AcrossRuns::RichardsonOrder) {
+      // |f_k - f_k+1| at the coarser x_k: falls with slope p towards the finer runs.
+      PlotSeries differences{"grainflow |f(run k) - f(run k+1)|", "linepoints", {}, {}};
+      for (std::size_t k = 0; k + 1 < computed.x.size(); ++k) {
+        differences.x.push_back(computed.x[k]);
+        differences.y.push_back(std::abs(computed.y[k] - computed.y[k + 1]));
+      }
+      computed = differences;
+      axes.logX = axes.logY = true;
+      if (!computed.x.empty() && q.reference.value) {
+        const double p = *q.reference.value * (computed.x.back() > computed.x.front() ? -1.0 : 1.0);
+        PlotSeries slope{fmt::format("order {:g} (reference)", *q.reference.value), "dashed", computed.x, {}};
+        for (double x : computed.x) slope.y.push_back(computed.y.front() * std::pow(x / computed.x.front(), p));
+        series.push_back(slope);
+      }
+    } else if (q.across == AcrossRuns::MinIncrement) {
+      // the values themselves; no reference line (the bound is on their differences)
+    } else if (q.across == AcrossRuns::LogLogSlope && computed.x.size() >= 1 && q.reference.value) {
       PlotSeries slope{fmt::format("slope {:g} (reference)", *q.reference.value), "dashed", computed.x, {}};
       for (double x : computed.x) slope.y.push_back(computed.y.front() * std::pow(x / computed.x.front(), *q.reference.value));
       series.push_back(slope);
@@ -115,7 +137,7 @@ std::string writePlotSpec(const Item& item, const Quantity& q, const std::vector
     series.insert(series.begin(), computed);
   }
   const std::string specFile = (fs::path(itemDirectory) / fmt::format("{}_{}.plot.json", item.name, slug(q.name))).string();
-  io::writeFileAtomically(specFile, plotSpecJson(png, fmt::format("{}: {}", item.title, q.name), xLabel, yLabel, q.plot, note, series));
+  io::writeFileAtomically(specFile, plotSpecJson(png, fmt::format("{}: {}", item.title, q.name), xLabel, yLabel, axes, note, series));
   specs.push_back(specFile);
   return png;
 }

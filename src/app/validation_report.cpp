@@ -32,6 +32,7 @@ std::string commandOutput(const std::string& command) {
 }
 
 std::string formatTolerance(const Tolerance& t) {
+  if (t.lowerBound) return ">= reference";
   return t.relative ? fmt::format("{:.3g} %", 100.0 * t.value) : fmt::format("{:.3g}", t.value);
 }
 std::string formatError(const Row& r) {
@@ -99,7 +100,7 @@ std::string resultsCsv(const std::vector<Row>& rows) {
                        r.comparison ? fmt::format("{:.10g}", r.comparison->reference) : "",
                        r.comparison ? fmt::format("{:.10g}", r.comparison->computed) : "",
                        r.comparison ? fmt::format("{:.6g}", r.comparison->error) : "", fmt::format("{:.6g}", r.tolerance.value),
-                       r.tolerance.relative ? "relative" : "absolute", r.pass() ? 1 : 0, csvCell(r.note));
+                       r.tolerance.lowerBound ? "lower_bound" : r.tolerance.relative ? "relative" : "absolute", r.pass() ? 1 : 0, csvCell(r.note));
   return out;
 }
 
@@ -171,9 +172,15 @@ void writeDocs(const std::string& docsDirectory, const std::string& repository, 
       md += fmt::format("; sweep `{}` = {}", item.sweepKey, fmt::join(values, ", "));
     }
     md += fmt::format("; wall time {:.1f} s.\n\n", outcomes[i].wallSeconds);
-    for (const Quantity& q : item.quantities)
-      md += fmt::format("- `{}`: {} of `{}` in `{}.csv`{}; reference: {}\n", q.name, operationName(q.operation), q.column, q.monitor,
-                        q.across == AcrossRuns::LogLogSlope ? ", observed order (log-log slope over the runs)" : "", q.reference.source);
+    for (const Quantity& q : item.quantities) {
+      const std::string across = q.across == AcrossRuns::LogLogSlope       ? ", log-log slope over the runs"
+                                 : q.across == AcrossRuns::RichardsonOrder ? ", observed order from the last three runs (Richardson)"
+                                 : q.across == AcrossRuns::MinIncrement    ? ", smallest increase between the runs"
+                                                                           : "";
+      const std::string quick = q.quickTolerance ? fmt::format("; tolerance in --quick mode {}", formatTolerance(*q.quickTolerance)) : "";
+      md += fmt::format("- `{}`: {} of `{}` in `{}.csv`{}; reference: {}{}\n", q.name, operationName(q.operation), q.column, q.monitor,
+                        across, q.reference.source, quick);
+    }
     md += "\n" + markdownTable(rowsPerItem[i]) + "\n";
     for (const std::string& png : outcomes[i].plots) {
       std::error_code ec;

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
 
 #include "io/csv_series.hpp"
 
@@ -103,8 +104,8 @@ std::vector<Row> compareQuantity(const Item& item, const Quantity& q, const std:
                                  const std::vector<Extracted>& extracted, const std::vector<std::string>& runFailures) {
   std::vector<Row> rows;
   const std::string opName = operationName(q.operation == Operation::Ratio ? q.operation : q.operation);
-  if (q.across == AcrossRuns::LogLogSlope) {
-    Row row{item.name, fmt::format("runs over {}", item.sweepKey), q.name, "loglog_slope of " + opName, std::nullopt, q.tolerance, ""};
+  if (q.across != AcrossRuns::None) {
+    Row row{item.name, fmt::format("runs over {}", item.sweepKey), q.name, acrossRunsName(q.across) + " of " + opName, std::nullopt, q.tolerance, ""};
     std::vector<double> xs, ys;
     for (std::size_t k = 0; k < runs.size(); ++k) {
       if (!extracted[k].value) {
@@ -115,10 +116,13 @@ std::vector<Row> compareQuantity(const Item& item, const Quantity& q, const std:
       xs.push_back(runs[k].x);
       ys.push_back(*extracted[k].value);
     }
-    if (xs.size() < 2) {
-      row.note = "a slope needs at least two runs";
-    } else {
-      row.comparison = compareValue(logLogSlope(xs, ys), *q.reference.value, q.tolerance);
+    try {
+      const double computed = q.across == AcrossRuns::LogLogSlope       ? logLogSlope(xs, ys)
+                              : q.across == AcrossRuns::RichardsonOrder ? richardsonOrder(xs, ys)
+                                                                        : minIncrement(xs, ys);
+      row.comparison = compareValue(computed, *q.reference.value, q.tolerance);
+    } catch (const std::invalid_argument& e) {
+      row.note = e.what();
     }
     rows.push_back(row);
     return rows;

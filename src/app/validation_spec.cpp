@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -28,6 +29,20 @@ const std::vector<std::pair<std::string, Operation>>& operationNames() {
 std::string operationName(Operation op) {
   for (const auto& [name, value] : operationNames())
     if (value == op) return name;
+  return "?";
+}
+
+const std::vector<std::pair<std::string, AcrossRuns>>& acrossRunsNames() {
+  static const std::vector<std::pair<std::string, AcrossRuns>> names = {{"none", AcrossRuns::None},
+                                                                         {"loglog_slope", AcrossRuns::LogLogSlope},
+                                                                         {"richardson_order", AcrossRuns::RichardsonOrder},
+                                                                         {"min_increment", AcrossRuns::MinIncrement}};
+  return names;
+}
+
+std::string acrossRunsName(AcrossRuns a) {
+  for (const auto& [name, value] : acrossRunsNames())
+    if (value == a) return name;
   return "?";
 }
 
@@ -188,9 +203,12 @@ Series readReferenceCsv(const Map& ref, const std::string& path, const std::stri
   return data;
 }
 
+PlotSpec readPlot(const Map& q);
+Tolerance readTolerance(const Map& q, const std::string& key, const Quantity& quantity);
+
 Quantity readQuantity(const Map& q, const std::string& directory, bool hasSweep) {
   q.allowOnly({"name", "monitor", "column", "x_column", "operation", "numerator", "denominator", "window", "threshold",
-               "at", "scale", "offset", "across_runs", "reference", "tolerance", "plot"});
+               "at", "scale", "offset", "across_runs", "reference", "tolerance", "quick_tolerance", "plot"});
   Quantity out;
   out.name = q.text("name");
   out.monitor = q.text("monitor");
@@ -215,8 +233,11 @@ Quantity readQuantity(const Map& q, const std::string& directory, bool hasSweep)
   if (out.operation == Operation::ValueAt) out.at = q.real("at");
   out.scale = q.real("scale", 1.0);
   out.offset = q.real("offset", 0.0);
-  const std::string across = q.choice("across_runs", {"none", "loglog_slope"}, "none");
-  out.across = across == "loglog_slope" ? AcrossRuns::LogLogSlope : AcrossRuns::None;
+  std::vector<std::string> acrossNames;
+  for (const auto& [name, kind] : acrossRunsNames()) acrossNames.push_back(name);
+  const std::string across = q.choice("across_runs", acrossNames, "none");
+  for (const auto& [name, kind] : acrossRunsNames())
+    if (name == across) out.across = kind;
   if (out.across != AcrossRuns::None && !hasSweep) q.fail("across_runs", "'" + across + "' without a sweep", "a sweep (at least two runs)");
   if (out.across != AcrossRuns::None && out.operation == Operation::Curve) q.fail("across_runs", "'" + across + "' with operation: curve", "a single-number operation");
 
@@ -238,21 +259,40 @@ Quantity readQuantity(const Map& q, const std::string& directory, bool hasSweep)
     if (out.across != AcrossRuns::None) ref.fail("file", "a reference curve for across_runs", "value: (the expected order)");
   }
 
-  const Map tol = q.map("tolerance");
-  tol.allowOnly({"absolute", "relative"});
-  if (tol.has("absolute") == tol.has("relative")) tol.fail("absolute", "both or neither of 'absolute' and 'relative'", "exactly one of them");
-  out.tolerance.relative = tol.has("relative");
-  out.tolerance.value = tol.real(out.tolerance.relative ? "relative" : "absolute");
-  if (!(out.tolerance.value >= 0.0)) tol.fail(out.tolerance.relative ? "relative" : "absolute", "a negative number", ">= 0");
+  out.plot = readPlot(q);
+  out.tolerance = readTolerance(q, "tolerance", out);
+  if (q.has("quick_tolerance")) out.quickTolerance = readTolerance(q, "quick_tolerance", out);
+  return out;
+}
 
+Tolerance readTolerance(const Map& q, const std::string& key, const Quantity& quantity) {
+  const Map tol = q.map(key);
+  tol.allowOnly({"absolute", "relative", "lower_bound"});
+  Tolerance out;
+  out.lowerBound = tol.boolean("lower_bound", false);
+  if (out.lowerBound) {
+    if (tol.has("absolute") || tol.has("relative"))
+      tol.fail(tol.has("absolute") ? "absolute" : "relative", "a tolerance with lower_bound: true", "lower_bound alone");
+    if (!quantity.reference.value) tol.fail("lower_bound", "a lower bound without reference.value", "reference: {value: BOUND}");
+    return out;
+  }
+  if (tol.has("absolute") == tol.has("relative")) tol.fail("absolute", "both or neither of 'absolute' and 'relative' (or lower_bound: true)", "exactly one of them");
+  out.relative = tol.has("relative");
+  out.value = tol.real(out.relative ? "relative" : "absolute");
+  if (!(out.value >= 0.0)) tol.fail(out.relative ? "relative" : "absolute", "a negative number", ">= 0");
+  return out;
+}
+
+PlotSpec readPlot(const Map& q) {
+  PlotSpec out;
   if (q.has("plot")) {
     const Map plot = q.map("plot");
     plot.allowOnly({"x_label", "y_label", "log_x", "log_y", "reference_style"});
-    out.plot.referenceStyle = plot.choice("reference_style", {"auto", "points", "line"}, "auto");
-    out.plot.xLabel = plot.text("x_label", std::string());
-    out.plot.yLabel = plot.text("y_label", std::string());
-    out.plot.logX = plot.boolean("log_x", false);
-    out.plot.logY = plot.boolean("log_y", false);
+    out.referenceStyle = plot.choice("reference_style", {"auto", "points", "line"}, "auto");
+    out.xLabel = plot.text("x_label", std::string());
+    out.yLabel = plot.text("y_label", std::string());
+    out.logX = plot.boolean("log_x", false);
+    out.logY = plot.boolean("log_y", false);
   }
   return out;
 }
@@ -364,6 +404,24 @@ Item loadItem(const std::string& directory) {
     for (std::size_t j = 0; j < i; ++j)
       if (item.quantities[j].name == item.quantities[i].name)
         Map(quantities[i], file, fmt::format("quantities[{}]", i)).fail("name", "'" + item.quantities[i].name + "' twice", "unique names");
+  }
+  for (std::size_t i = 0; i < item.quantities.size(); ++i) {
+    const Quantity& q = item.quantities[i];
+    const std::size_t needed = q.across == AcrossRuns::RichardsonOrder ? 3 : q.across == AcrossRuns::None ? 0 : 2;
+    for (const auto* runs : {&item.runs, &item.quickRuns}) {
+      const std::string which = runs == &item.runs ? "sweep.values" : "sweep.quick_values";
+      if (runs->size() < needed)
+        Map(quantities[i], file, fmt::format("quantities[{}]", i))
+            .fail("across_runs", fmt::format("{} with {} run(s) in {}", acrossRunsName(q.across), runs->size(), which),
+                  fmt::format("at least {} runs", needed));
+      if (q.across != AcrossRuns::RichardsonOrder) continue;
+      const std::size_t n = runs->size();
+      const double r1 = (*runs)[n - 2].x / (*runs)[n - 3].x, r2 = (*runs)[n - 1].x / (*runs)[n - 2].x;
+      if (!(r1 > 0.0) || r1 == 1.0 || std::abs(r2 / r1 - 1.0) > 1e-6)
+        Map(quantities[i], file, fmt::format("quantities[{}]", i))
+            .fail("across_runs", fmt::format("richardson_order with ratios {:g} and {:g} between the last three values of {}", r1, r2, which),
+                  "a constant refinement ratio (e.g. 16, 32, 64)");
+    }
   }
   return item;
 }

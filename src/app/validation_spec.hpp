@@ -25,7 +25,12 @@ struct RunPoint {
 };
 
 enum class Operation { Final, Initial, Min, Max, Mean, ValueAt, FirstCrossing, DurationAbove, Ratio, Curve };
-enum class AcrossRuns { None, LogLogSlope };
+/// One comparison for a whole sweep: log-log slope, observed (Richardson) order of the last three
+/// runs, or the smallest increase between consecutive runs.
+enum class AcrossRuns { None, LogLogSlope, RichardsonOrder, MinIncrement };
+/// Name in validation.yaml <-> across-runs kind.
+const std::vector<std::pair<std::string, AcrossRuns>>& acrossRunsNames();
+std::string acrossRunsName(AcrossRuns a);
 
 /// Name in validation.yaml <-> operation.
 const std::vector<std::pair<std::string, Operation>>& operationNames();
@@ -59,7 +64,9 @@ struct Quantity {
   AcrossRuns across = AcrossRuns::None;
   Reference reference;
   Tolerance tolerance;
+  std::optional<Tolerance> quickTolerance;  // replaces `tolerance` in --quick mode (coarser quick settings)
   PlotSpec plot;
+  const Tolerance& toleranceFor(bool quick) const { return quick && quickTolerance ? *quickTolerance : tolerance; }
 };
 
 struct Item {

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "dem/walls/stl_reader.hpp"
+#include "fluid/initial_condition.hpp"
 #include "fluid/loops.hpp"
 #include "fluid/solid_mesh.hpp"
 
@@ -47,12 +48,10 @@ Solver::Solver(Params& root, const Domain& domain, const Vec3& gravity) : domain
   poissonX_.assign(grid_.interiorCellCount(), 0.0);
 
   Params init = fluid.section({"initial", "-", "initial condition"});
-  const Vec3 u0 = init.vec3({"velocity", "m/s", "uniform initial velocity (0 in blocked cells)"}, Vec3{});
-  const double p0 = init.real({"pressure", "Pa", "uniform initial pressure"}, 0.0);
-  const double s0 = init.real({"scalar", "-", "uniform initial passive scalar"}, 0.0);
-  setVelocity([&](const Vec3&) { return u0; });
-  setPressure([&](const Vec3&) { return p0; });
-  setScalar([&](const Vec3&) { return s0; });
+  const InitialCondition initial = readInitialCondition(init, rho_);  // fluid/initial_condition.hpp
+  setVelocity(initial.velocity);
+  setPressure(initial.pressure);
+  setScalar([&](const Vec3&) { return initial.scalar; });
 }
 
 void Solver::readParams(Params& fluid, const Domain& domain) {

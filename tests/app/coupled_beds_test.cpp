@@ -161,7 +161,7 @@ TEST(CoupledBeds, RayleighTaylorLayerStartsSharpWithSeedAtwoodNumber) {
   ASSERT_EQ(layer.header.at(4), "atwood_number [-]");
   const double rhoMix = 0.912 * 1.0 + 0.088 * 10.0;
   EXPECT_NEAR(layer.rows.back().at(4), (rhoMix - 1.0) / (rhoMix + 1.0), 0.02 * 0.284);
-  EXPECT_NEAR(layer.rows.back().at(1), 0.05, 3 * 0.15 / 128);
+  EXPECT_LT(layer.rows.back().at(1), 3 * 0.15 / 128);
   const auto balance = gf::io::readCsv(dir.file("o/coupling_balance.csv"));
   for (const auto& row : balance.rows) EXPECT_LT(row.at(4), 1e-12);
 }

@@ -79,6 +79,34 @@ TEST(Extract, LogLogSlopeRecoversPowerLaws) {
   EXPECT_THROW(logLogSlope({1.0}, {1.0}), std::invalid_argument);
 }
 
+TEST(Extract, RichardsonOrderCancelsTheCommonError) {
+  // f(h) = f0 + C h^2 + D (D: an error every run shares, e.g. the time error of a space study).
+  auto f = [](double h) { return 3.0 + 0.7 * h * h + 0.01; };
+  EXPECT_NEAR(richardsonOrder({16, 32, 64}, {f(1.0 / 16), f(1.0 / 32), f(1.0 / 64)}), 2.0, 1e-9);  // cells (ratio 2)
+  EXPECT_NEAR(richardsonOrder({0.3, 0.1, 1.0 / 30}, {f(0.3), f(0.1), f(1.0 / 30)}), 2.0, 1e-9);     // steps (ratio 1/3)
+  // The last three runs count: a pre-asymptotic first run does not.
+  EXPECT_NEAR(richardsonOrder({8, 16, 32, 64}, {9.0, f(1.0 / 16), f(1.0 / 32), f(1.0 / 64)}), 2.0, 1e-9);
+  EXPECT_THROW(richardsonOrder({16, 32}, {1.0, 2.0}), std::invalid_argument);
+  EXPECT_THROW(richardsonOrder({16, 32, 48}, {1.0, 2.0, 2.5}), std::invalid_argument);  // ratio not constant
+}
+
+TEST(Extract, MinIncrementOrdersByTheSweptValue) {
+  EXPECT_DOUBLE_EQ(minIncrement({0.1, 0.4, 0.2}, {10.0, 14.0, 11.5}), 1.5);  // 10 -> 11.5 -> 14
+  EXPECT_DOUBLE_EQ(minIncrement({0.1, 0.2}, {10.0, 9.0}), -1.0);
+  EXPECT_THROW(minIncrement({0.1}, {1.0}), std::invalid_argument);
+}
+
+TEST(Extract, CompareValueLowerBound) {
+  Tolerance bound;
+  bound.lowerBound = true;
+  EXPECT_TRUE(compareValue(1.95, 1.9, bound).pass);
+  EXPECT_TRUE(compareValue(1.9, 1.9, bound).pass);
+  const auto c = compareValue(1.85, 1.9, bound);
+  EXPECT_FALSE(c.pass);
+  EXPECT_NEAR(c.error, -0.05, 1e-12);
+  EXPECT_FALSE(compareValue(NAN, 1.9, bound).pass);
+}
+
 TEST(Extract, CompareValueAbsoluteAndRelative) {
   const auto a = compareValue(1.02, 1.0, {0.03, false});
   EXPECT_NEAR(a.error, 0.02, 1e-15);

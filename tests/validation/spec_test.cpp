@@ -97,6 +97,36 @@ TEST(ValidationSpec, RejectsBadValues) {
             std::string::npos);
 }
 
+TEST(ValidationSpec, AcrossRunsKindsAndLowerBound) {
+  TempDir dir;
+  const std::string richardson = replaced(replaced(kItem, "across_runs: loglog_slope", "across_runs: richardson_order"),
+                                          "tolerance: {absolute: 0.1}", "tolerance: {lower_bound: true}");
+  // Three full runs but only two quick runs: an observed order needs three in both modes.
+  EXPECT_NE(loadError(richardson).find("at least 3 runs"), std::string::npos) << loadError(richardson);
+  const std::string three = replaced(replaced(richardson, "quick_values: [1.0e6, 4.0e6]", "quick_values: [1.0e6, 2.0e6, 4.0e6]"),
+                                     "values: [1.0e6, 2.0e6, 4.0e6]", "values: [1.0e6, 2.0e6, 4.0e6]");
+  const Item item = loadItem(itemDir(dir, three));
+  EXPECT_EQ(item.quantities[1].across, AcrossRuns::RichardsonOrder);
+  EXPECT_TRUE(item.quantities[1].tolerance.lowerBound);
+  // Ratios 2 and 1.5: no constant refinement.
+  EXPECT_NE(loadError(replaced(replaced(three, "quick_values: [1.0e6, 2.0e6, 4.0e6]", "quick_values: [1.0e6, 2.0e6, 3.0e6]"),
+                               "values: [1.0e6, 2.0e6, 4.0e6]", "values: [1.0e6, 2.0e6, 3.0e6]"))
+                .find("constant refinement ratio"),
+            std::string::npos);
+  const std::string increment = replaced(richardson, "across_runs: richardson_order", "across_runs: min_increment");
+  EXPECT_EQ(loadItem(itemDir(dir, increment)).quantities[1].across, AcrossRuns::MinIncrement);
+  EXPECT_NE(loadError(replaced(richardson, "{lower_bound: true}", "{lower_bound: true, absolute: 0.1}")).find("lower_bound alone"),
+            std::string::npos);
+}
+
+TEST(ValidationSpec, QuickToleranceReplacesTheToleranceInQuickMode) {
+  TempDir dir;
+  const Item item = loadItem(itemDir(dir, replaced(kItem, "    tolerance: {relative: 0.01}", "    tolerance: {relative: 0.01}\n    quick_tolerance: {relative: 0.05}")));
+  EXPECT_DOUBLE_EQ(item.quantities[0].toleranceFor(false).value, 0.01);
+  EXPECT_DOUBLE_EQ(item.quantities[0].toleranceFor(true).value, 0.05);
+  EXPECT_DOUBLE_EQ(item.quantities[1].toleranceFor(true).value, 0.1);  // none given: the tolerance
+}
+
 TEST(ValidationSpec, OverridesFollowKeyPathsIntoMapsAndLists) {
   const std::string text = applyOverrides(
       "time: {end: 1.0}\nmaterials:\n  - {name: a, restitution: 0.5}\n  - {name: b}\ninsertion:\n  - {velocity: [0, 0, 1]}\n",

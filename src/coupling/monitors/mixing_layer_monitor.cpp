@@ -19,6 +19,11 @@
 //   alpha        least-squares slope of h against A g t^2 over the samples with
 //                fit_start <= t <= fit_end (with an intercept, so the width reached by the end of
 //                the exponential phase does not bias the slope); 0 before two such samples exist.
+//   alpha_bubble, alpha_spike  the same for the distances the bubble (upper) and spike (lower)
+//                fronts travel from the initial interface, h_b = alpha_b A g t^2 and
+//                h_s = alpha_s A g t^2, the split used by the RT literature the seed cites
+//                (Dimonte et al. 2004: alpha_b = 0.025-0.08, alpha_s / alpha_b growing with A);
+//                alpha = alpha_b + alpha_s. The slopes need no interface position.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -29,6 +34,22 @@
 
 namespace gf::coupling {
 namespace {
+
+/// Least-squares line y = slope x + c from running sums (n, x, y, xx, xy).
+struct LinearFit {
+  double sums[5] = {0, 0, 0, 0, 0};
+  void add(double x, double y) {
+    sums[0] += 1.0;
+    sums[1] += x;
+    sums[2] += y;
+    sums[3] += x * x;
+    sums[4] += x * y;
+  }
+  double slope() const {
+    const double n = sums[0], det = n * sums[3] - sums[1] * sums[1];
+    return n >= 2.0 && det > 0.0 ? (n * sums[4] - sums[1] * sums[2]) / det : 0.0;
+  }
+};
 
 class MixingLayerMonitor final : public Monitor {
  public:
@@ -52,10 +73,11 @@ class MixingLayerMonitor final : public Monitor {
     if (smoothing_ % 2 == 0) p.fail("smoothing_layers", std::to_string(smoothing_), "an odd number of layers");
   }
   std::vector<MonitorColumn> columns() const override {
-    return {{"mixing_width", "m"}, {"lower_front", "m"}, {"upper_front", "m"}, {"atwood_number", "-"}, {"alpha", "-"}};
+    return {{"mixing_width", "m"}, {"lower_front", "m"}, {"upper_front", "m"}, {"atwood_number", "-"},
+            {"alpha", "-"},        {"alpha_bubble", "-"}, {"alpha_spike", "-"}};
   }
   std::vector<double> sample(const RunState& s) override {
-    if (!s.dem || !s.fluid || s.dem->particles().size() == 0) return {0, 0, 0, 0, 0};
+    if (!s.dem || !s.fluid || s.dem->particles().size() == 0) return {0, 0, 0, 0, 0, 0, 0};
     const std::vector<double> phi = smoothed(layerSolidFraction(*s.fluid));
     const CartesianGrid& g = s.fluid->grid();
     const int layers = static_cast<int>(phi.size());
@@ -76,8 +98,13 @@ class MixingLayerMonitor final : public Monitor {
     const double dz = g.spacing[axis_];
     const double lowerFront = g.origin[axis_] + (lower + 0.5) * dz, upperFront = g.origin[axis_] + (upper + 0.5) * dz;
     const double width = upperFront - lowerFront;
-    if (s.time >= fitStart_ && s.time <= fitEnd_) accumulateFit(atwood_ * gravity_ * s.time * s.time, width);
-    return {width, lowerFront, upperFront, atwood_, alpha()};
+    if (s.time >= fitStart_ && s.time <= fitEnd_) {
+      const double x = atwood_ * gravity_ * s.time * s.time;
+      width_.add(x, width);
+      bubble_.add(x, upperFront);
+      spike_.add(x, -lowerFront);
+    }
+    return {width, lowerFront, upperFront, atwood_, width_.slope(), bubble_.slope(), spike_.slope()};
   }
   void save(BinaryWriter& out) const override {
     out.put(initialised_);
@@ -87,7 +114,8 @@ class MixingLayerMonitor final : public Monitor {
     out.put(topLayer_);
     out.put(bottomLayer_);
     out.putVector(phiInit_);
-    for (double v : fit_) out.put(v);
+    for (const LinearFit* f : {&width_, &bubble_, &spike_})
+      for (double v : f->sums) out.put(v);
   }
   void load(BinaryReader& in) override {
     initialised_ = in.get<bool>();
@@ -97,7 +125,8 @@ class MixingLayerMonitor final : public Monitor {
     topLayer_ = in.get<int>();
     bottomLayer_ = in.get<int>();
     phiInit_ = in.getVector<double>();
-    for (double& v : fit_) v = in.get<double>();
+    for (LinearFit* f : {&width_, &bubble_, &spike_})
+      for (double& v : f->sums) v = in.get<double>();
   }
 
  private:
@@ -158,19 +187,6 @@ class MixingLayerMonitor final : public Monitor {
     gravity_ = std::abs(s.gravity[axis_]);
     initialised_ = true;
   }
-  // Sums n, x, y, xx, xy of the linear fit width = alpha x + c, x = A g t^2.
-  void accumulateFit(double x, double y) {
-    fit_[0] += 1.0;
-    fit_[1] += x;
-    fit_[2] += y;
-    fit_[3] += x * x;
-    fit_[4] += x * y;
-  }
-  double alpha() const {
-    const double n = fit_[0], det = n * fit_[3] - fit_[1] * fit_[1];
-    return n >= 2.0 && det > 0.0 ? (n * fit_[4] - fit_[1] * fit_[2]) / det : 0.0;
-  }
-
   int axis_ = 2;
   double threshold_ = 0.1, fitStart_ = 0.2, fitEnd_ = 1e30;
   int smoothing_ = 3;
@@ -178,7 +194,7 @@ class MixingLayerMonitor final : public Monitor {
   bool initialised_ = false;
   double phi0_ = 0.0, atwood_ = 0.0, gravity_ = 9.81;
   int topLayer_ = 0, bottomLayer_ = 0;  // the initial suspension's layers
-  double fit_[5] = {0, 0, 0, 0, 0};
+  LinearFit width_, bubble_, spike_;  // fits of h, upper front and -(lower front) against A g t^2
 };
 
 }  // namespace
