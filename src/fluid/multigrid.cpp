@@ -381,7 +381,7 @@ void MultigridPoisson::smoothPair(PoissonLevel& L, int first) const {
     smoothColour(L, second);
     return;
   }
-  int slabs = (lines >= kSerialBelow && gf::threadCount() > 1) ? gf::threadCount() : 1;
+  int slabs = (lines >= kSerialBelow && !serialLoops()) ? gf::threadCount() : 1;
   slabs = std::min(slabs, nz / 2);
   auto plane = [&](int k, int colour) {
     for (int j = 0; j < ny; ++j) relaxLine(L, j, k, colour);

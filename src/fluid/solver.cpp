@@ -256,6 +256,7 @@ void Solver::setScalar(const std::function<double(const Vec3&)>& f) {
 
 void Solver::step(double dt) {
   ScopedPhase timer(timers_, Phase::Fluid);
+  const SerialFluidScope serial(grid_.interiorCellCount() < kSerialCellsBelow);
   bc_.time = time_ + dt;  // prescribed (ramped) boundary velocities at the new time level
   bc_.voidFraction = &coupling_.voidFraction;  // (the solver may have been moved)
   fillAllGhosts();
