@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <unordered_map>
 
-#include "coupling/loops.hpp"
 #include "coupling/deposit.hpp"
+#include "coupling/drag/dispatch.hpp"
+#include "coupling/loops.hpp"
 #include "coupling/forces.hpp"
 #include "coupling/smoothing.hpp"
 
@@ -22,6 +24,12 @@ CouplerSettings readSettings(Params& s) {
   c.interpolation = interp == "cell" ? InterpolationMode::Cell
                     : interp == "trilinear" ? InterpolationMode::Trilinear
                                             : InterpolationMode::Stencil;
+  c.fluxVelocity = s.choice({"velocity_reconstruction", "-",
+                             "fluid velocity of a cell as the particles see it: 'flux' = mean superficial flux of its "
+                             "two faces / eps of the cell (per axis, from the fluid's face-mean cell velocity and the "
+                             "eps of the cell and its neighbours; same as 'face_mean' where eps is uniform), "
+                             "'face_mean' = the fluid's cell velocity (mean of the face velocities) as given"},
+                            {"flux", "face_mean"}, "face_mean") == "flux";
   c.exchange = s.choice({"exchange", "-", "drag given to the fluid explicitly (force density) or semi-implicitly "
                                           "(coefficient K and mean particle velocity)"},
                         {"explicit", "implicit"}, "implicit") == "explicit"
@@ -73,27 +81,28 @@ Coupler::Coupler(Params& root, const CartesianGrid& grid, const std::array<bool,
     settings_.dragLaw = s.text({"drag_law", "-"}, "di_felice");
     settings_.voidFraction = s.text({"void_fraction", "-"}, "divided");
   }
-  for (auto& f : scratch_) f = Field(grid);
+  solidFraction_ = Field(grid);
   for (int a = 0; a < 3; ++a) {
     vorticity_[a] = Field(grid);
     divTau_[a] = Field(grid);
   }
+  // ghost cell -> its source (periodic: wrapped image; wall: nearest interior cell, i.e. zero
+  // normal gradient), listed once so that fillGhosts is one gather
+  const auto& n = grid.cells;
+  const int g = grid.ghosts;
+  auto source = [&](int i, int a) { return periodic[a] ? topology_.mapIndex(i, a) : std::clamp(i, 0, n[a] - 1); };
+  for (int k = -g; k < n[2] + g; ++k)
+    for (int j = -g; j < n[1] + g; ++j)
+      for (int i = -g; i < n[0] + g; ++i) {
+        if (grid.isInterior(i, j, k)) continue;
+        ghostTarget_.push_back(solidFraction_.index(i, j, k));
+        ghostSource_.push_back(solidFraction_.index(source(i, 0), source(j, 1), source(k, 2)));
+      }
 }
 
 void Coupler::fillGhosts(Field& f) const {
-  const auto& n = topology_.grid.cells;
-  const int g = topology_.grid.ghosts;
-  // periodic: wrapped image; wall: nearest interior cell (zero normal gradient)
-  auto source = [&](int i, int a) { return topology_.periodic[a] ? topology_.mapIndex(i, a) : std::clamp(i, 0, n[a] - 1); };
-  for (int k = -g; k < n[2] + g; ++k)
-    for (int j = -g; j < n[1] + g; ++j) {
-      const bool interiorRow = j >= 0 && j < n[1] && k >= 0 && k < n[2];
-      const int sj = source(j, 1), sk = source(k, 2);
-      for (int i = -g; i < n[0] + g; ++i) {
-        if (interiorRow && i == 0) i = n[0];  // skip the interior of the row
-        f(i, j, k) = f(source(i, 0), sj, sk);
-      }
-    }
+  double* d = f.data().data();
+  for (std::size_t q = 0; q < ghostTarget_.size(); ++q) d[ghostTarget_[q]] = d[ghostSource_[q]];
 }
 
 void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFields& fields) {
@@ -101,20 +110,22 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   scheme_->buildStencils(particles, topology_, stencils_);
   stencilsReady_ = true;
   const std::size_t n = particles.size();
-  std::vector<double> volume(n);
-  for (std::size_t p = 0; p < n; ++p) volume[p] = force::sphereVolume(2.0 * particles.radius[p]);
-  Field& solid = scratch_[0];
-  depositToFields(stencils_, volume.data(), 1, {&solid});
+  const std::size_t cells = solidFraction_.data().size();
+  const std::vector<double>& volume = depositChannels<1>(
+      stencils_, cells, deposit_,
+      [&](std::size_t p, double (&v)[1]) { v[0] = force::sphereVolume(2.0 * particles.radius[p]); });
   particleVolume_ = 0.0;
-  for (double v : volume) particleVolume_ += v;
+  for (std::size_t p = 0; p < n; ++p) particleVolume_ += force::sphereVolume(2.0 * particles.radius[p]);
+  Field& solid = solidFraction_;
   const auto& c = topology_.grid.cells;
   const double cellVolume = topology_.grid.cellVolume();
   depositedVolume_ = 0.0;
   for (int k = 0; k < c[2]; ++k)
     for (int j = 0; j < c[1]; ++j)
       for (int i = 0; i < c[0]; ++i) {
-        depositedVolume_ += solid(i, j, k);
-        solid(i, j, k) /= cellVolume;  // solid fraction
+        const std::size_t q = solid.index(i, j, k);
+        depositedVolume_ += volume[q];
+        solid.data()[q] = volume[q] / cellVolume;  // solid fraction
       }
   smoothField(topology_, settings_.smoothingLength, solid);
   clippedVolume_ = 0.0;
@@ -129,101 +140,133 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   fillGhosts(eps);
 }
 
-template <InterpolationMode Mode>
-void Coupler::sampleFluid(const FluidView& fluid, const CouplingFields& fields, const dem::ParticleSet& particles) {
+void Coupler::packSamples(const FluidView& fluid, const CouplingFields& fields) {
+  // channels: u_f (3), eps (1), then grad p, div tau, vorticity (3 each) where a force needs them
   const ForceSwitches& w = settings_.forces;
-  const bool needVorticity = w.saffmanMeiLift || w.magnusLift || w.fluidTorque;
-  const bool needDivTau = w.viscousStress;
-  const Field* divTau[3];
-  for (int a = 0; a < 3; ++a)
-    divTau[a] = fluid.viscousStressDivergence[a] ? fluid.viscousStressDivergence[a] : &divTau_[a];
-  const Field* const velocity[3] = {fluid.velocity[0], fluid.velocity[1], fluid.velocity[2]};
-  const Field* const gradP[3] = {fluid.pressureGradient[0], fluid.pressureGradient[1], fluid.pressureGradient[2]};
-  const Field* const vort[3] = {&vorticity_[0], &vorticity_[1], &vorticity_[2]};
-  const Field* const eps[1] = {&fields.voidFraction};
-  const double dPrimFactor = 1.0 / settings_.coarseGraining.factor;
-  const double epsFloor = std::max(settings_.minVoidFraction, 1e-6);
-  forEachIndex(static_cast<std::int64_t>(particles.size()), 64, [&](std::int64_t ip) {
-    const auto p = static_cast<std::size_t>(ip);
-    const Vec3 x = particles.position[p];
-    SampleWeights sw;
-    sampleWeights<Mode>(topology_, stencils_, p, x, sw);
-    double v3[3], v1[1];
-    sampleFields<3>(sw, velocity, v3);
-    fluidVelocityAtParticle_[p] = {v3[0], v3[1], v3[2]};
-    sampleFields<1>(sw, eps, v1);
-    voidFractionAtParticle_[p] = std::clamp(v1[0], epsFloor, 1.0);
-    if (w.pressureGradient) {
-      sampleFields<3>(sw, gradP, v3);
-      gradPAtParticle_[p] = {v3[0], v3[1], v3[2]};
-    }
-    if (needDivTau) {
-      sampleFields<3>(sw, divTau, v3);
-      divTauAtParticle_[p] = {v3[0], v3[1], v3[2]};
-    }
-    if (needVorticity) {
-      sampleFields<3>(sw, vort, v3);
-      vorticityAtParticle_[p] = {v3[0], v3[1], v3[2]};
-    }
-    slip_[p] = fluidVelocityAtParticle_[p] - particles.velocity[p];
-    const double dPrim = 2.0 * particles.radius[p] * dPrimFactor;
-    reynolds_[p] = fluid.density * norm(slip_[p]) * dPrim / fluid.viscosity;
-  });
+  const Field* src[13];
+  int k = 0;
+  for (int a = 0; a < 3; ++a) src[k++] = fluid.velocity[a];
+  src[k++] = &fields.voidFraction;
+  gradPChannel_ = divTauChannel_ = vorticityChannel_ = -1;
+  if (w.pressureGradient) {
+    gradPChannel_ = k;
+    for (int a = 0; a < 3; ++a) src[k++] = fluid.pressureGradient[a];
+  }
+  if (w.viscousStress) {
+    divTauChannel_ = k;
+    for (int a = 0; a < 3; ++a)
+      src[k++] = fluid.viscousStressDivergence[a] ? fluid.viscousStressDivergence[a] : &divTau_[a];
+  }
+  if (w.saffmanMeiLift || w.magnusLift || w.fluidTorque) {
+    vorticityChannel_ = k;
+    for (int a = 0; a < 3; ++a) src[k++] = &vorticity_[a];
+  }
+  sampleChannels_ = k;
+  const std::size_t cells = solidFraction_.data().size();
+  samples_.resize(cells * k);
+  double* out = samples_.data();
+  const double* in[13];
+  for (int ch = 0; ch < k; ++ch) in[ch] = src[ch]->data().data();
+  for (std::size_t q = 0; q < cells; ++q)
+    for (int ch = 0; ch < k; ++ch) out[q * k + ch] = in[ch][q];
+  if (settings_.fluxVelocity) scaleToFluxVelocity(fields.voidFraction);
+}
+
+void Coupler::scaleToFluxVelocity(const Field& eps) {
+  // The fluid's cell velocity is the mean of its face velocities u_c = (u_- + u_+)/2, the faces
+  // carrying eps_f = (eps_c + eps_nb)/2 in the fluid's momentum and continuity equations. With
+  // the same superficial flux Q through both faces (continuity along the axis), u_+- = Q/eps_+-,
+  // and the cell's interstitial velocity Q/eps_c is
+  //   u_c * R,  R = (1/eps_c) / ((1/eps_- + 1/eps_+)/2) = 2 eps_- eps_+ / (eps_c (eps_- + eps_+)),
+  // R = 1 where eps is uniform. Where eps jumps (bottom and top of a bed) the face mean mixes the
+  // velocities of the dense and the free side: 19 % low in a bed cell at eps 0.45 next to a
+  // particle-free cell, whose particles would feel too little drag (they rest on a distributor
+  // instead). The exchange keeps the fluid's own u_c as reference (depositExchange), so the drag
+  // given back to the fluid still equals the particles' drag.
+  const auto& n = topology_.grid.cells;
+  const int k = sampleChannels_;
+  const double* e = eps.data().data();
+  for (int a = 0; a < 3; ++a) {
+    const std::ptrdiff_t st = eps.stride(a);
+    for (int kk = 0; kk < n[2]; ++kk)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i) {
+          const std::size_t q = eps.index(i, j, kk);
+          const double ec = e[q], em = 0.5 * (ec + e[q - st]), ep = 0.5 * (ec + e[q + st]);
+          samples_[q * k + a] *= 2.0 * em * ep / (ec * (em + ep));
+        }
+  }
 }
 
 void Coupler::alignPreviousSlip(const dem::ParticleSet& particles) {
   // slip of each current particle at the previous coupling step (matched by id); a particle
-  // without history gets its current slip, i.e. no virtual-mass force in its first step
+  // without history gets NaN, read as "its current slip", i.e. no virtual-mass force in its first step
   if (particles.id == previousId_) return;
   std::unordered_map<std::int64_t, std::size_t> oldIndex;
   oldIndex.reserve(previousId_.size());
   for (std::size_t q = 0; q < previousId_.size(); ++q) oldIndex.emplace(previousId_[q], q);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<Vec3> aligned(particles.size());
   for (std::size_t p = 0; p < particles.size(); ++p) {
     const auto it = oldIndex.find(particles.id[p]);
-    aligned[p] = it == oldIndex.end() ? slip_[p] : previousSlip_[it->second];
+    aligned[p] = it == oldIndex.end() ? Vec3{nan, nan, nan} : previousSlip_[it->second];
   }
   previousSlip_ = std::move(aligned);
   previousId_ = particles.id;
 }
 
-void Coupler::computeForcesFromSamples(const FluidView& fluid, dem::ParticleSet& particles) {
+template <InterpolationMode Mode, class Law>
+void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet& particles) {
+  // One pass per particle: interpolate every fluid field at once (interleaved cell buffer), slip,
+  // Re, drag law (inlined), forces, and the per-particle exchange data for fillFluidSources.
   const ForceSwitches& w = settings_.forces;
   const double k3 = settings_.coarseGraining.fluidForceScale();
   const double dPrimFactor = 1.0 / settings_.coarseGraining.factor;
   const bool modelB = settings_.model == ExchangeModel::B;
   const double rho = fluid.density, mu = fluid.viscosity;
-  if (w.virtualMass && !(fluid.timeStep > 0.0))
-    throw std::invalid_argument("coupling: virtual mass force needs FluidView::timeStep > 0");
-  if (w.virtualMass) alignPreviousSlip(particles);
+  const double epsFloor = std::max(settings_.minVoidFraction, 1e-6);
+  const int channels = sampleChannels_;
+  const int cP = gradPChannel_, cT = divTauChannel_, cW = vorticityChannel_;
+  const double* samples = samples_.data();
+  const Vec3 buoyancy = w.buoyancy ? force::buoyancy(rho, 1.0, gravity_) : Vec3{};  // per volume
   forEachIndex(static_cast<std::int64_t>(particles.size()), 64, [&](std::int64_t ip) {
     const auto p = static_cast<std::size_t>(ip);
+    SampleWeights sw;
+    sampleWeights<Mode>(topology_, stencils_, p, particles.position[p], sw);
+    double s[13];
+    sampleInterleaved(sw, samples, channels, s);
+    const Vec3 uf{s[0], s[1], s[2]};
+    const double eps = std::clamp(s[3], epsFloor, 1.0);
+    const Vec3 slip = uf - particles.velocity[p];
     const double d = 2.0 * particles.radius[p];
     const double dPrim = d * dPrimFactor;
     const double volume = force::sphereVolume(d);  // parcel volume = k^3 primary volumes
-    const Vec3 slip = slip_[p];
-    beta_[p] = w.drag ? k3 * particleDragCoefficient(mu, dPrim, correction_[p]) : 0.0;
-    const Vec3 fDrag = force::drag(beta_[p], slip);
+    const double re = rho * norm(slip) * dPrim / mu;
+    const double beta = w.drag ? k3 * particleDragCoefficient(mu, dPrim, law(re, eps)) : 0.0;
+    const Vec3 fDrag = force::drag(beta, slip);
     Vec3 exchangedOther{}, particleOnly{};
-    if (w.pressureGradient) {
-      const Vec3 f = force::pressureGradient(volume, gradPAtParticle_[p]);
-      (modelB ? exchangedOther : particleOnly) += f;
+    if (cP >= 0) (modelB ? exchangedOther : particleOnly) += force::pressureGradient(volume, {s[cP], s[cP + 1], s[cP + 2]});
+    if (cT >= 0) (modelB ? exchangedOther : particleOnly) += force::viscousStress(volume, {s[cT], s[cT + 1], s[cT + 2]});
+    if (w.buoyancy) particleOnly += volume * buoyancy;
+    if (w.virtualMass) {
+      const Vec3 previous = std::isnan(previousSlip_[p].x) ? slip : previousSlip_[p];
+      exchangedOther += force::virtualMass(w.virtualMassCoefficient, rho, volume, slip, previous, fluid.timeStep);
     }
-    if (w.viscousStress) {
-      const Vec3 f = force::viscousStress(volume, divTauAtParticle_[p]);
-      (modelB ? exchangedOther : particleOnly) += f;
+    Vec3 torque{};
+    if (cW >= 0) {
+      const Vec3 vorticity{s[cW], s[cW + 1], s[cW + 2]};
+      const Vec3 relOmega = force::relativeRotation(particles.angularVelocity[p], vorticity);
+      if (w.saffmanMeiLift) exchangedOther += k3 * force::saffmanMeiLift(rho, mu, dPrim, slip, vorticity);
+      if (w.magnusLift) exchangedOther += k3 * force::magnusLift(rho, dPrim, relOmega, slip);
+      if (w.fluidTorque) torque = k3 * force::rotationalTorque(mu, dPrim, relOmega);
     }
-    if (w.buoyancy) particleOnly += force::buoyancy(rho, volume, gravity_);
-    if (w.virtualMass)
-      exchangedOther += force::virtualMass(w.virtualMassCoefficient, rho, volume, slip,
-                                           previousSlip_[p], fluid.timeStep);
-    const Vec3 relOmega = force::relativeRotation(particles.angularVelocity[p], vorticityAtParticle_[p]);
-    if (w.saffmanMeiLift) exchangedOther += k3 * force::saffmanMeiLift(rho, mu, dPrim, slip, vorticityAtParticle_[p]);
-    if (w.magnusLift) exchangedOther += k3 * force::magnusLift(rho, dPrim, relOmega, slip);
+    fluidVelocityAtParticle_[p] = uf;
+    slip_[p] = slip;
+    beta_[p] = beta;
     dragForce_[p] = fDrag;
     otherExchangedForce_[p] = exchangedOther;
     particles.externalForce[p] = fDrag + exchangedOther + particleOnly;
-    particles.externalTorque[p] = w.fluidTorque ? k3 * force::rotationalTorque(mu, dPrim, relOmega) : Vec3{};
+    particles.externalTorque[p] = torque;
   });
 }
 
@@ -239,6 +282,8 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
     if (w.pressureGradient && !fluid.pressureGradient[a])
       throw std::invalid_argument("coupling: FluidView::pressureGradient is not set (needed by forces.pressure_gradient)");
   }
+  if (w.virtualMass && !(fluid.timeStep > 0.0))
+    throw std::invalid_argument("coupling: virtual mass force needs FluidView::timeStep > 0");
   if (w.saffmanMeiLift || w.magnusLift || w.fluidTorque) {
     computeVorticity(topology_, fluid.velocity, vorticity_);
     for (auto& f : vorticity_) fillGhosts(f);
@@ -247,17 +292,17 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
     computeViscousStressDivergence(topology_, fluid.velocity, fluid.viscosity, divTau_);
     for (auto& f : divTau_) fillGhosts(f);
   }
-  for (auto* v : {&fluidVelocityAtParticle_, &slip_, &gradPAtParticle_, &divTauAtParticle_, &vorticityAtParticle_,
-                  &dragForce_, &otherExchangedForce_})
-    v->assign(n, Vec3{});
-  for (auto* v : {&voidFractionAtParticle_, &reynolds_, &correction_, &beta_}) v->assign(n, 0.0);
-  switch (settings_.interpolation) {  // dispatched once; the loops inside are monomorphic
-    case InterpolationMode::Cell: sampleFluid<InterpolationMode::Cell>(fluid, fields, particles); break;
-    case InterpolationMode::Trilinear: sampleFluid<InterpolationMode::Trilinear>(fluid, fields, particles); break;
-    case InterpolationMode::Stencil: sampleFluid<InterpolationMode::Stencil>(fluid, fields, particles); break;
-  }
-  drag_->evaluate(n, reynolds_.data(), voidFractionAtParticle_.data(), correction_.data());
-  computeForcesFromSamples(fluid, particles);
+  packSamples(fluid, fields);
+  for (auto* v : {&fluidVelocityAtParticle_, &slip_, &dragForce_, &otherExchangedForce_}) v->resize(n);
+  beta_.resize(n);
+  if (w.virtualMass) alignPreviousSlip(particles);
+  withDragCorrection(*drag_, [&](const auto& law) {  // law and interpolation resolved once
+    switch (settings_.interpolation) {
+      case InterpolationMode::Cell: forcePass<InterpolationMode::Cell>(fluid, law, particles); break;
+      case InterpolationMode::Trilinear: forcePass<InterpolationMode::Trilinear>(fluid, law, particles); break;
+      case InterpolationMode::Stencil: forcePass<InterpolationMode::Stencil>(fluid, law, particles); break;
+    }
+  });
   previousId_ = particles.id;
   previousSlip_ = slip_;
   forcesReady_ = true;
@@ -310,40 +355,48 @@ void Coupler::fillFluidSources(CouplingFields& fields) {
 }
 
 void Coupler::depositExchange(CouplingFields& fields, bool implicit) {
-  const std::size_t n = stencils_.size();
-  // channels: 0-2 explicit force on the fluid; implicit adds 3: beta, 4-6: beta (u_p - u_f@p)
-  const int channels = implicit ? 7 : 3;
-  std::vector<double> values(n * channels);
-  for (std::size_t p = 0; p < n; ++p) {
-    const Vec3 explicitOnFluid = implicit ? -otherExchangedForce_[p] : -(otherExchangedForce_[p] + dragForce_[p]);
-    double* v = values.data() + p * channels;
-    for (int a = 0; a < 3; ++a) v[a] = explicitOnFluid[a];
-    if (implicit) {
-      v[3] = beta_[p];
-      for (int a = 0; a < 3; ++a) v[4 + a] = -beta_[p] * slip_[p][a];
-    }
-  }
-  std::vector<Field*> targets;
-  for (int ch = 0; ch < channels; ++ch) targets.push_back(&scratch_[ch]);
-  depositToFields(stencils_, values.data(), channels, targets);
-
+  const std::size_t cells = solidFraction_.data().size();
   const auto& c = topology_.grid.cells;
-  const double cellVolume = topology_.grid.cellVolume();
+  const double inverseCellVolume = 1.0 / topology_.grid.cellVolume();
   const Field* const* u = lastFluid_.velocity;
-  for (int a = 0; a < 3; ++a) fields.forceDensity[a].fill(0.0);
-  fields.dragCoefficient.fill(0.0);
-  for (int a = 0; a < 3; ++a) fields.particleVelocity[a].fill(0.0);
+  // interior cells are all written below, ghosts by fillGhosts
+  if (!implicit) {
+    fields.dragCoefficient.fill(0.0);
+    for (int a = 0; a < 3; ++a) fields.particleVelocity[a].fill(0.0);
+    // explicit: every exchanged force on the fluid, as force density
+    const std::vector<double>& sum = depositChannels<3>(stencils_, cells, deposit_, [&](std::size_t p, double (&v)[3]) {
+      const Vec3 f = -(otherExchangedForce_[p] + dragForce_[p]);
+      v[0] = f.x, v[1] = f.y, v[2] = f.z;
+    });
+    for (int k = 0; k < c[2]; ++k)
+      for (int j = 0; j < c[1]; ++j)
+        for (int i = 0; i < c[0]; ++i) {
+          const std::size_t q = solidFraction_.index(i, j, k);
+          for (int a = 0; a < 3; ++a) fields.forceDensity[a].data()[q] = sum[q * 3 + a] * inverseCellVolume;
+        }
+    return;
+  }
+  // implicit: 0-2 explicit force on the fluid, 3 beta, 4-6 beta (u_p - u_f@p)
+  const std::vector<double>& sum = depositChannels<7>(stencils_, cells, deposit_, [&](std::size_t p, double (&v)[7]) {
+    const Vec3 f = -otherExchangedForce_[p];
+    const double b = beta_[p];
+    const Vec3 s = slip_[p];
+    v[0] = f.x, v[1] = f.y, v[2] = f.z;
+    v[3] = b;
+    v[4] = -b * s.x, v[5] = -b * s.y, v[6] = -b * s.z;
+  });
   for (int k = 0; k < c[2]; ++k)
     for (int j = 0; j < c[1]; ++j)
       for (int i = 0; i < c[0]; ++i) {
-        for (int a = 0; a < 3; ++a) fields.forceDensity[a](i, j, k) = scratch_[a](i, j, k) / cellVolume;
-        if (!implicit) continue;
-        const double kv = scratch_[3](i, j, k);  // sum w beta
-        fields.dragCoefficient(i, j, k) = kv / cellVolume;
+        const std::size_t q = solidFraction_.index(i, j, k);
+        const double* v = &sum[q * 7];
+        for (int a = 0; a < 3; ++a) fields.forceDensity[a].data()[q] = v[a] * inverseCellVolume;
+        const double kv = v[3];  // sum w beta
+        fields.dragCoefficient.data()[q] = kv * inverseCellVolume;
         // K u_p_avg V = sum w beta (u_p + u_c - u_f@p): the mean particle velocity corrected by the
         // interpolation defect, so that K (u_c - u_p_avg) V equals the particles' drag exactly.
         for (int a = 0; a < 3; ++a)
-          fields.particleVelocity[a](i, j, k) = kv > 0.0 ? (*u[a])(i, j, k) + scratch_[4 + a](i, j, k) / kv : 0.0;
+          fields.particleVelocity[a].data()[q] = kv > 0.0 ? u[a]->data()[q] + v[4 + a] / kv : 0.0;
       }
 }
 

@@ -26,6 +26,7 @@
 #include "core/serialize.hpp"
 #include "coupling/coarse_graining.hpp"
 #include "coupling/coupling_interval.hpp"
+#include "coupling/deposit.hpp"
 #include "coupling/drag/drag_law.hpp"
 #include "coupling/grid_topology.hpp"
 #include "coupling/interpolation.hpp"
@@ -65,6 +66,7 @@ struct CouplerSettings {
   std::string dragLaw = "di_felice";
   std::string voidFraction = "divided";
   InterpolationMode interpolation = InterpolationMode::Trilinear;
+  bool fluxVelocity = false;  // cell velocity seen by particles from the superficial face flux (coupler.cpp)
   ExchangeScheme exchange = ExchangeScheme::SemiImplicit;
   ForceSwitches forces;
   double smoothingLength = 0.0;  // m; 0 = off
@@ -116,9 +118,10 @@ class Coupler {
   void load(BinaryReader& in);
 
  private:
-  template <InterpolationMode Mode>
-  void sampleFluid(const FluidView& fluid, const CouplingFields& fields, const dem::ParticleSet& particles);
-  void computeForcesFromSamples(const FluidView& fluid, dem::ParticleSet& particles);
+  void packSamples(const FluidView& fluid, const CouplingFields& fields);
+  void scaleToFluxVelocity(const Field& eps);
+  template <InterpolationMode Mode, class Law>
+  void forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet& particles);
   void alignPreviousSlip(const dem::ParticleSet& particles);
   void realignToParticles(const dem::ParticleSet& particles);
   void depositExchange(CouplingFields& fields, bool implicit);
@@ -133,15 +136,19 @@ class Coupler {
   std::unique_ptr<VoidFractionScheme> scheme_;
   ParticleStencils stencils_;
   FluidView lastFluid_;
-  Field scratch_[7];      // deposit targets / derived fluid fields
+  Field solidFraction_;
   Field vorticity_[3];
   Field divTau_[3];
+  // fluid fields at cells, channel-interleaved for the particle loop (see packSamples)
+  std::vector<double> samples_;
+  int sampleChannels_ = 4, gradPChannel_ = -1, divTauChannel_ = -1, vorticityChannel_ = -1;
+  DepositBuffers deposit_;
+  std::vector<std::size_t> ghostTarget_, ghostSource_;  // ghost cell <- interior cell (fillGhosts)
   // per particle, from computeParticleForces
-  std::vector<Vec3> fluidVelocityAtParticle_, slip_, gradPAtParticle_, divTauAtParticle_, vorticityAtParticle_;
-  std::vector<double> voidFractionAtParticle_, reynolds_, correction_, beta_;
-  std::vector<Vec3> dragForce_, otherExchangedForce_;
+  std::vector<Vec3> fluidVelocityAtParticle_, slip_, dragForce_, otherExchangedForce_;
+  std::vector<double> beta_;
   std::vector<std::int64_t> previousId_;
-  std::vector<Vec3> previousSlip_;
+  std::vector<Vec3> previousSlip_;  // NaN where a particle has no history (virtual mass)
   double particleVolume_ = 0.0, depositedVolume_ = 0.0, clippedVolume_ = 0.0;
   Vec3 balanceError_;
   bool stencilsReady_ = false, forcesReady_ = false;

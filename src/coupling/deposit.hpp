@@ -1,19 +1,79 @@
 #pragma once
-// Deposit of per-particle quantities onto cell fields with the particle stencils:
-//   field_c += sum_p w_pc value_p        (several channels at once)
-// Deterministic for a given thread count: each thread accumulates its static block of particles
-// into a private buffer; buffers are then added in thread order per cell. Memory: threads x cells
-// per channel (fine for the grids of unresolved CFD-DEM; a colouring scheme would avoid it).
+// Deposit of per-particle quantities onto cells with the particle stencils:
+//   sum_c[ch] = sum_p w_pc value_p[ch]        (C channels at once)
+// The result is channel-interleaved (sum[cell * C + ch], cell = Field::index of the grid), so one
+// stencil entry touches one cache line. Deterministic for a given thread count: each thread
+// accumulates its static block of particles into its own buffer; the buffers are then added in
+// thread order per cell. The buffers live in DepositBuffers and are reused (no allocation per
+// step once sized). Memory: threads x cells x C doubles (fine for the grids of unresolved
+// CFD-DEM; a colouring scheme would avoid it).
+#include <omp.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
-#include "core/grid.hpp"
 #include "coupling/stencil.hpp"
 
 namespace gf::coupling {
 
-/// values: particles x channels, row-major (values[p * channels + c]); fields: one per channel,
-/// all on the same grid. Fields are overwritten (zeroed first, ghosts included).
-void depositToFields(const ParticleStencils& stencils, const double* values, int channels,
-                     const std::vector<Field*>& fields);
+inline constexpr std::int64_t kMinParallelDeposit = 4096;  // particles; below: one thread (no region)
+
+struct DepositBuffers {
+  std::vector<std::vector<double>> perThread;  // [thread][cell * C + ch]
+  std::vector<double> merged;                  // [cell * C + ch]
+};
+
+/// values(p, double (&v)[C]) writes the C values of particle p. Returns the interleaved sums over
+/// `cells` flat cells (valid until the next deposit with the same buffers).
+template <int C, class Values>
+const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_t cells, DepositBuffers& b,
+                                           Values&& values) {
+  const auto n = static_cast<std::int64_t>(s.size());
+  const std::size_t size = cells * C;
+  b.merged.resize(size);
+  const int threads = n >= kMinParallelDeposit ? omp_get_max_threads() : 1;
+  auto accumulate = [&](std::int64_t begin, std::int64_t end, double* sum) {
+    for (std::int64_t p = begin; p < end; ++p) {
+      double v[C];
+      values(static_cast<std::size_t>(p), v);
+      const std::size_t base = static_cast<std::size_t>(p) * s.capacity;
+      const int count = s.count[p];
+      for (int e = 0; e < count; ++e) {
+        double* target = sum + s.cell[base + e] * C;
+        const double w = s.weight[base + e];
+        for (int ch = 0; ch < C; ++ch) target[ch] += w * v[ch];
+      }
+    }
+  };
+  if (threads == 1) {
+    std::fill(b.merged.begin(), b.merged.end(), 0.0);
+    accumulate(0, n, b.merged.data());
+    return b.merged;
+  }
+  if (static_cast<int>(b.perThread.size()) < threads) b.perThread.resize(threads);
+  int team = 1;
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+#pragma omp single
+    team = omp_get_num_threads();  // implicit barrier: every member sees it
+    std::vector<double>& buf = b.perThread[t];
+    buf.assign(size, 0.0);
+    // the static block of thread t (as schedule(static) without chunk would give it)
+    const std::int64_t chunk = n / team, extra = n % team;
+    const std::int64_t begin = t * chunk + std::min<std::int64_t>(t, extra);
+    accumulate(begin, begin + chunk + (t < extra ? 1 : 0), buf.data());
+#pragma omp barrier
+#pragma omp for schedule(static)
+    for (std::int64_t q = 0; q < static_cast<std::int64_t>(size); ++q) {
+      double sum = 0.0;
+      for (int tt = 0; tt < team; ++tt) sum += b.perThread[tt][q];
+      b.merged[q] = sum;
+    }
+  }
+  return b.merged;
+}
 
 }  // namespace gf::coupling

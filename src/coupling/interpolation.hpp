@@ -97,6 +97,17 @@ inline void sampleFields(const SampleWeights& w, const Field* const (&fields)[N]
     for (int i = 0; i < N; ++i) out[i] += w.weight[m] * fields[i]->data()[w.cell[m]];
 }
 
+/// out[ch] = sum_m w_m buffer[cell_m * channels + ch] for a channel-interleaved cell buffer (all
+/// fields a particle needs side by side: one cache line per stencil entry).
+inline void sampleInterleaved(const SampleWeights& w, const double* buffer, int channels, double* out) {
+  for (int ch = 0; ch < channels; ++ch) out[ch] = 0.0;
+  for (int m = 0; m < w.count; ++m) {
+    const double* v = buffer + w.cell[m] * channels;
+    const double wm = w.weight[m];
+    for (int ch = 0; ch < channels; ++ch) out[ch] += wm * v[ch];
+  }
+}
+
 /// One-off sample of several fields at particle p (tests, diagnostics).
 template <InterpolationMode Mode, int N>
 inline void sampleAt(const GridTopology& t, const ParticleStencils& s, std::size_t p, const Vec3& x,

@@ -348,18 +348,31 @@ void Solver::pressureGradient(Field out[3]) const {
     if (out[c].data().size() != p_.data().size()) out[c] = Field(grid_);
     Field& o = out[c];
     const auto s = p_.stride(c);
-    const double inv2h = 0.5 / grid_.spacing[c];
+    const double invH = 1.0 / grid_.spacing[c];
     // The mean driving gradient (-dp/dx = drive_, applied as a body force) is part of grad p: the
     // particles must feel it too (e.g. the buoyancy of a suspension in a periodic box).
     const double mean = (driveMode_ != DrivingMode::None && driveAxis_ == c) ? -drive_ : 0.0;
+    const int n = grid_.cells[c];
+    // Ghosts of zero normal gradient (walls, inlets, slip, outflow) and blocked neighbours carry
+    // no pressure information: there the gradient is one-sided from the other neighbour (a
+    // central difference with the mirrored value would halve it, e.g. the hydrostatic gradient,
+    // i.e. the buoyancy of particles in the cells next to a wall). Pressure-outlet ghosts are
+    // Dirichlet images and keep the central difference.
+    const bool mirrorLow = !bc_.periodic(c) && bc_.at(c, 0).type != BoundaryType::PressureOutlet;
+    const bool mirrorHigh = !bc_.periodic(c) && bc_.at(c, 1).type != BoundaryType::PressureOutlet;
     parallelFor(static_cast<std::int64_t>(grid_.cells[1]) * grid_.cells[2], [&](std::int64_t line) {
       const int j = static_cast<int>(line % grid_.cells[1]), k = static_cast<int>(line / grid_.cells[1]);
       for (int i = 0; i < grid_.cells[0]; ++i) {
         const std::size_t id = p_.index(i, j, k);
-        // A blocked neighbour has no pressure: mirror the cell's own value (as at walls).
-        const double pp = blocked_[id + s] ? p_.data()[id] : p_.data()[id + s];
-        const double pm = blocked_[id - s] ? p_.data()[id] : p_.data()[id - s];
-        o.data()[id] = (twoD_ && c == 2) ? 0.0 : (pp - pm) * inv2h + mean;
+        const int along = c == 0 ? i : (c == 1 ? j : k);
+        const bool noPlus = blocked_[id + s] || (mirrorHigh && along == n - 1);
+        const bool noMinus = blocked_[id - s] || (mirrorLow && along == 0);
+        const double* pd = p_.data().data();
+        double g = 0.0;
+        if (!noPlus && !noMinus) g = 0.5 * (pd[id + s] - pd[id - s]) * invH;
+        else if (!noPlus) g = (pd[id + s] - pd[id]) * invH;
+        else if (!noMinus) g = (pd[id] - pd[id - s]) * invH;
+        o.data()[id] = (twoD_ && c == 2) ? 0.0 : g + mean;
       }
     });
     fillCellGhosts(o, bc_, CellGhostKind::ZeroGradient);

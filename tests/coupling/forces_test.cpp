@@ -86,8 +86,9 @@ TEST(Forces, TogglesSelectWhatActsOnParticles) {
     EXPECT_EQ(norm(one.externalForce[0]), 0.0);
   }
   {
+    // the prescribed velocity is taken as the particle's cell velocity (no flux reconstruction)
     auto c = makeCoupler("  interpolation: cell\n  void_fraction: pcm\n  drag_law: stokes\n"
-                         "  forces:\n    pressure_gradient: false\n    viscous_stress: false\n",
+                         "  velocity_reconstruction: face_mean\n  forces:\n    pressure_gradient: false\n    viscous_stress: false\n",
                          g);
     CouplingFields f(g);
     c->computeVoidFraction(one, f);
@@ -112,7 +113,8 @@ TEST(Forces, VirtualMassUsesSlipChangeOverTheCouplingIntervalAndSurvivesRestart)
   FluidFields fluid(g);
   dem::ParticleSet one;
   one.add(7, 0, 0.001, 2500.0, g.cellCentre(1, 1, 1));
-  const std::string yaml = "  forces:\n    drag: false\n    pressure_gradient: false\n    viscous_stress: false\n"
+  const std::string yaml = "  velocity_reconstruction: face_mean\n"  // the prescribed velocity as given
+                           "  forces:\n    drag: false\n    pressure_gradient: false\n    viscous_stress: false\n"
                            "    virtual_mass: true\n";
   auto c = makeCoupler(yaml, g);
   CouplingFields f(g);
@@ -140,7 +142,8 @@ TEST(Forces, VirtualMassUsesSlipChangeOverTheCouplingIntervalAndSurvivesRestart)
 
 TEST(Forces, VirtualMassHistoryFollowsParticlesWhenTheDemReordersThem) {
   const CartesianGrid g = makeGrid({5, 5, 5}, {0.01, 0.01, 0.01});
-  const std::string yaml = "  forces:\n    drag: false\n    pressure_gradient: false\n    viscous_stress: false\n"
+  const std::string yaml = "  velocity_reconstruction: face_mean\n"  // the prescribed velocity as given
+                           "  forces:\n    drag: false\n    pressure_gradient: false\n    viscous_stress: false\n"
                            "    virtual_mass: true\n";
   const dem::ParticleSet base = randomParticles(50, 0.001, 0.002, {0, 0, 0}, {0.05, 0.05, 0.05});
   FluidFields fluid(g);

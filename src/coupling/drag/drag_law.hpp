@@ -30,9 +30,15 @@
 
 namespace gf::coupling {
 
+/// A drag law as a pure function f(Re, eps).
+using CorrectionFunction = double (*)(double reynolds, double voidFraction);
+
 class DragLaw {
  public:
   virtual ~DragLaw() = default;
+  /// The pure function behind the law, or nullptr if the law is not one (then use evaluate /
+  /// correction). Lets a caller resolve the law once and run its own monomorphic loop.
+  virtual CorrectionFunction function() const { return nullptr; }
   /// correction[i] = f(reynolds[i], voidFraction[i]) for i in [0, n).
   virtual void evaluate(std::size_t n, const double* reynolds, const double* voidFraction,
                         double* correction) const = 0;
@@ -54,6 +60,7 @@ class DragLawOf final : public DragLaw {
   double correction(double reynolds, double voidFraction) const override {
     return Correction(reynolds, voidFraction);
   }
+  CorrectionFunction function() const override { return Correction; }
 };
 
 /// Drag coefficient per particle, beta_p = 3 pi mu d f (kg/s).

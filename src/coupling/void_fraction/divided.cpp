@@ -2,9 +2,14 @@
 // the volume is split into 29 equal parts at the centre and at 28 satellite points, 14 on each of
 // two spheres of radius 0.623926 r and 0.917902 r (0.623926 + 0.293976): 8 points at polar angles
 // pi/4, 3pi/4 and azimuths pi/4 + k pi/2, and 6 on the coordinate axes. Each part goes to the cell
-// containing its point (wrapped at periodic boundaries, folded back at walls).
+// containing its point (wrapped at periodic boundaries, folded back at walls). The coordinates
+// +-r_s/2 and +-r_s/sqrt(2) are written exactly symmetric. Particles smaller than a cell (the
+// common case) take a fast path: 2 x 2 x 2 cells, point counts from a table (see addBlock).
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <stdexcept>
 
 #include "coupling/void_fraction/void_fraction_scheme.hpp"
 #include "coupling/loops.hpp"
@@ -15,15 +20,17 @@ namespace {
 constexpr int kPoints = 29;
 
 std::array<Vec3, kPoints> unitSatellitePoints() {
+  // sin(pi/4) cos(pi/4 + k pi/2) = +-1/2 and cos(pi/4), cos(3 pi/4) = +-sqrt(1/2), written
+  // exactly symmetric (the trigonometric values differ from them in the last bits), so that each
+  // axis has 9 distinct coordinates
   std::array<Vec3, kPoints> pts{};
   int n = 0;
   pts[n++] = {0.0, 0.0, 0.0};
-  const double pi = 3.14159265358979323846;
+  const double halfRoot2 = std::sqrt(0.5);
   for (double r : {0.623926, 0.623926 + 0.293976}) {
     for (int a = 0; a < 4; ++a) {
-      const double zeta = pi / 4.0 + a * pi / 2.0;
-      for (double theta : {pi / 4.0, 3.0 * pi / 4.0})
-        pts[n++] = {r * std::sin(theta) * std::cos(zeta), r * std::sin(theta) * std::sin(zeta), r * std::cos(theta)};
+      const double sx = (a == 0 || a == 3) ? 1.0 : -1.0, sy = a < 2 ? 1.0 : -1.0;  // azimuth pi/4 + a pi/2
+      for (double sz : {1.0, -1.0}) pts[n++] = {sx * 0.5 * r, sy * 0.5 * r, sz * halfRoot2 * r};
     }
     for (int axis = 0; axis < 3; ++axis)
       for (double s : {-1.0, 1.0}) {
@@ -35,23 +42,100 @@ std::array<Vec3, kPoints> unitSatellitePoints() {
   return pts;
 }
 
+constexpr int kValues = 9;  // distinct coordinates per axis
+
+/// The unit points per axis as 9 sorted distinct coordinates, and for every split of each axis
+/// (the first s_a coordinates in the lower cell, the rest in the upper) the number of points in
+/// each of the 8 cells of the 2 x 2 x 2 block: count[s_x][s_y][s_z][bit0 x + bit1 y + bit2 z].
+struct UnitPoints {
+  double c[3][kPoints];
+  double value[3][kValues];
+  std::uint8_t count[kValues + 1][kValues + 1][kValues + 1][8] = {};
+  double reach = 0.0;  // largest |coordinate|
+  UnitPoints() {
+    const auto pts = unitSatellitePoints();
+    int index[3][kPoints];
+    for (int a = 0; a < 3; ++a) {
+      std::array<double, kPoints> v;
+      for (int m = 0; m < kPoints; ++m) v[m] = c[a][m] = pts[m][a];
+      std::sort(v.begin(), v.end());
+      const auto end = std::unique(v.begin(), v.end());
+      if (end - v.begin() != kValues) throw std::logic_error("divided: unit points must have 9 coordinates per axis");
+      std::copy(v.begin(), end, value[a]);
+      for (int m = 0; m < kPoints; ++m) index[a][m] = static_cast<int>(std::find(v.begin(), end, c[a][m]) - v.begin());
+      reach = std::max(reach, -value[a][0]);
+    }
+    for (int sx = 0; sx <= kValues; ++sx)
+      for (int sy = 0; sy <= kValues; ++sy)
+        for (int sz = 0; sz <= kValues; ++sz)
+          for (int m = 0; m < kPoints; ++m) {
+            const int b = (index[0][m] >= sx ? 1 : 0) | (index[1][m] >= sy ? 2 : 0) | (index[2][m] >= sz ? 4 : 0);
+            ++count[sx][sy][sz][b];
+          }
+  }
+};
+
+const UnitPoints unit;  // built at start-up, read-only afterwards
+
 class DividedVoidFraction final : public VoidFractionScheme {
  public:
   explicit DividedVoidFraction(Params&) {}
   void buildStencils(const dem::ParticleSet& particles, const GridTopology& topology,
                      ParticleStencils& stencils) const override {
-    static const std::array<Vec3, kPoints> unit = unitSatellitePoints();
-    stencils.resize(particles.size(), kPoints);
+    const CartesianGrid& g = topology.grid;
+    // Fast path when the points of every particle span less than one cell per axis: each point
+    // then lies in one of two cells per axis, i.e. one of the 8 cells of a 2 x 2 x 2 block, and
+    // the stencil is 8 point counts (no search). Cells are found exactly as by cellOf(x + r u).
+    const double span = 2.0 * unit.reach * maxRadius(particles);
+    const bool block = span < 0.999 * std::min({g.spacing.x, g.spacing.y, g.spacing.z});
+    stencils.resize(particles.size(), block ? 8 : kPoints);
     forEachIndex(static_cast<std::int64_t>(particles.size()), 29, [&](std::int64_t p) {
       StencilWriter w(stencils, static_cast<std::size_t>(p));
       const Vec3 x = particles.position[p];
       const double r = particles.radius[p];
-      for (const Vec3& u : unit) {
-        const auto c = topology.cellOf(x + r * u);
+      if (block) {
+        addBlock(topology, x, r, w);
+        return;
+      }
+      for (int m = 0; m < kPoints; ++m) {
+        const auto c = topology.cellOf(x + r * Vec3{unit.c[0][m], unit.c[1][m], unit.c[2][m]});
         w.add(topology.flat(c[0], c[1], c[2]), 1.0 / kPoints);
       }
       w.normalise();  // sum of 29 x (1/29) is 1 up to round-off; make it 1 to the last bit we can
     });
+  }
+
+ private:
+  static void addBlock(const GridTopology& t, const Vec3& x, double r, StencilWriter& w) {
+    // Along axis a the points lie in cells lo and lo + 1; cellOf(x + r u)[a] = floor((x + r u -
+    // origin) / h) exceeds lo iff the scaled coordinate is >= lo + 1. The scaled coordinate grows
+    // monotonically with u (rounding is monotone), so the points in the lower cell are those of
+    // the first s_a sorted coordinates: the 8 cell counts are a table entry.
+    int mapped[3][2], split[3];
+    for (int a = 0; a < 3; ++a) {
+      const double o = t.grid.origin[a], inv = t.inverseSpacing[a], xa = x[a];
+      const int lo = floorToInt((xa + r * unit.value[a][0] - o) * inv);
+      const double upper = lo + 1.0;
+      int s = 0;
+      for (int v = 0; v < kValues; ++v) s += (xa + r * unit.value[a][v] - o) * inv < upper ? 1 : 0;
+      split[a] = s;
+      mapped[a][0] = t.mapIndex(lo, a);
+      mapped[a][1] = t.mapIndex(lo + 1, a);
+    }
+    int count[8];
+    for (int b = 0; b < 8; ++b) count[b] = unit.count[split[0]][split[1]][split[2]][b];
+    // cells folded / wrapped onto the same cell (walls, one-cell periodic axes): merge the bins
+    for (int a = 0; a < 3; ++a)
+      if (mapped[a][0] == mapped[a][1])
+        for (int b = 0; b < 8; ++b)
+          if (b & (1 << a)) {
+            count[b & ~(1 << a)] += count[b];
+            count[b] = 0;
+          }
+    for (int b = 0; b < 8; ++b)
+      if (count[b] > 0)
+        w.append(t.flat(mapped[0][b & 1], mapped[1][(b >> 1) & 1], mapped[2][(b >> 2) & 1]),
+                 count[b] * (1.0 / kPoints));
   }
 };
 
