@@ -55,6 +55,11 @@ Boundaries Boundaries::read(Params& fluid, const std::array<bool, 3>& periodic, 
                          "fluidisation ramp); 0 = constant",
                          Range::nonNegative()},
                         0.0);
+    b.superficial = p.boolean({"superficial", "-",
+                               "inlet: velocity is the superficial velocity (the face mass flux eps_f u_f equals "
+                               "it whatever eps is in the first cell; the face velocity is velocity / eps_f); "
+                               "false: the face (interstitial) velocity is prescribed"},
+                              true);
     if (type == "wall") b.type = BoundaryType::Wall;
     else if (type == "slip") b.type = BoundaryType::Slip;
     else if (type == "inlet") b.type = BoundaryType::Inlet;
@@ -113,6 +118,7 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode) {
       const BoundarySide& side = bc.at(a, s);
       if (c == a) {
         // Normal component: boundary face at 0 or n; k counts inwards from it.
+        const Field* eps = side.superficial ? bc.voidFraction : nullptr;
         forEachLine(u, a, [&](int p, int q, std::size_t base, std::ptrdiff_t st) {
           auto at = [&](int k) -> double& { return d[base + (s == 0 ? k : n - k) * st]; };
           switch (side.type) {
@@ -129,6 +135,17 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode) {
                 x[b1] = grid.origin[b1] + (p + 0.5) * grid.spacing[b1];
                 x[b2] = grid.origin[b2] + (q + 0.5) * grid.spacing[b2];
                 value = inletNormalVelocity(bc, a, s, grid, x);
+                if (eps) {
+                  // Superficial inlet: eps_f u_f = U at the face (continuity uses the same eps_f).
+                  int cell[3];
+                  cell[a] = s == 0 ? 0 : n - 1;
+                  cell[b1] = p;
+                  cell[b2] = q;
+                  const std::size_t cc = eps->index(cell[0], cell[1], cell[2]);
+                  const std::ptrdiff_t outward = (s == 0 ? -1 : 1) * eps->stride(a);
+                  const double epsF = 0.5 * (eps->data()[cc] + eps->data()[cc + outward]);
+                  if (epsF > 0.0) value /= epsF;
+                }
               }
               at(0) = value;
               for (int m = 1; m <= g; ++m) at(-m) = value;
@@ -181,6 +198,7 @@ void fillCellGhosts(Field& f, const Boundaries& bc, CellGhostKind kind) {
       });
       continue;
     }
+    if (kind == CellGhostKind::PeriodicOnly) continue;
     for (int s = 0; s < 2; ++s) {
       const BoundarySide& side = bc.at(a, s);
       bool dirichlet = false;

@@ -19,6 +19,7 @@ struct BoundarySide {
   bool scalarFixed = false;
   double scalarValue = 0.0;  // Dirichlet value of the passive scalar where scalarFixed
   double rampTime = 0.0;     // inlet/wall velocity multiplied by min(1, t / rampTime); 0 = no ramp
+  bool superficial = true;   // inlet: `velocity` is superficial (face flux eps_f u_f = U), not interstitial
 };
 
 /// Factor of a side's prescribed velocity at time t: min(1, t / rampTime) (1 without ramp).
@@ -32,6 +33,10 @@ inline bool isOutlet(BoundaryType t) { return t == BoundaryType::PressureOutlet 
 struct Boundaries {
   std::array<BoundarySide, 6> side;
   double time = 0.0;  // s: time at which prescribed velocities are evaluated (ramps); set by the solver
+  /// Cell void fraction (ghosts filled) for superficial inlets: face velocity = U / eps_f with
+  /// eps_f the mean of the first cell and its ghost (the face eps of the continuity equation).
+  /// Null: eps_f = 1. Set by the solver before every use.
+  const Field* voidFraction = nullptr;
   const BoundarySide& at(int axis, int s) const { return side[sideIndex(axis, s)]; }
   bool periodic(int axis) const { return side[sideIndex(axis, 0)].type == BoundaryType::Periodic; }
 
@@ -51,7 +56,9 @@ double inletNormalVelocity(const Boundaries& bc, int axis, int side, const Carte
 void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode);
 
 /// Kinds of cell-centred ghost fill.
-enum class CellGhostKind { ZeroGradient, Pressure, PressureIncrement, Scalar };
+/// PeriodicOnly: wrap-around ghosts of periodic axes only (fields read at momentum faces only:
+/// their non-periodic ghosts are never used).
+enum class CellGhostKind { ZeroGradient, Pressure, PressureIncrement, Scalar, PeriodicOnly };
 void fillCellGhosts(Field& f, const Boundaries& bc, CellGhostKind kind);
 
 }  // namespace gf::fluid

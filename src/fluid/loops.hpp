@@ -12,10 +12,31 @@ namespace gf::fluid {
 
 inline constexpr std::int64_t kSerialBelow = 2048;           // grid lines
 inline constexpr std::int64_t kSerialElementsBelow = 65536;  // single values
+inline constexpr std::int64_t kSerialCellsBelow = 32768;     // whole grids stepped serially
+
+/// Set while a grid of fewer than kSerialCellsBelow cells is stepped (SerialFluidScope): every
+/// fluid loop then runs serially. A 2 x 30 x 90 bed has 2-cell grid lines and 5400 cells: a
+/// thread team per loop costs more than the loop (2 threads were slower than 1).
+inline bool& fluidSerialFlag() {
+  static bool flag = false;
+  return flag;
+}
+inline bool serialLoops() { return fluidSerialFlag() || gf::threadCount() == 1; }
+
+class SerialFluidScope {
+ public:
+  explicit SerialFluidScope(bool on) : previous_(fluidSerialFlag()) { fluidSerialFlag() = previous_ || on; }
+  ~SerialFluidScope() { fluidSerialFlag() = previous_; }
+  SerialFluidScope(const SerialFluidScope&) = delete;
+  SerialFluidScope& operator=(const SerialFluidScope&) = delete;
+
+ private:
+  bool previous_;
+};
 
 template <class Body>
 inline void parallelFor(std::int64_t n, Body&& body) {
-  if (n < kSerialBelow || gf::threadCount() == 1) {
+  if (n < kSerialBelow || serialLoops()) {
     for (std::int64_t i = 0; i < n; ++i) body(i);
   } else {
     gf::parallelFor(n, body);
@@ -24,7 +45,7 @@ inline void parallelFor(std::int64_t n, Body&& body) {
 
 template <class Body>
 inline double parallelSum(std::int64_t n, Body&& body) {
-  if (n < kSerialBelow || gf::threadCount() == 1) {
+  if (n < kSerialBelow || serialLoops()) {
     double s = 0.0;
     for (std::int64_t i = 0; i < n; ++i) s += body(i);
     return s;
@@ -35,7 +56,7 @@ inline double parallelSum(std::int64_t n, Body&& body) {
 /// Element-wise loops (vector updates, dot products): cheap bodies, so a larger threshold.
 template <class Body>
 inline void parallelForElements(std::int64_t n, Body&& body) {
-  if (n < kSerialElementsBelow || gf::threadCount() == 1) {
+  if (n < kSerialElementsBelow || serialLoops()) {
     for (std::int64_t i = 0; i < n; ++i) body(i);
   } else {
     gf::parallelFor(n, body);
@@ -60,7 +81,7 @@ inline double serialSum4(std::int64_t n, Body&& body) {
 
 template <class Body>
 inline double parallelSumElements(std::int64_t n, Body&& body) {
-  if (n < kSerialElementsBelow || gf::threadCount() == 1) return serialSum4(n, body);
+  if (n < kSerialElementsBelow || serialLoops()) return serialSum4(n, body);
   return gf::parallelSum(n, body);
 }
 
@@ -68,7 +89,7 @@ inline double parallelSumElements(std::int64_t n, Body&& body) {
 /// thread block, partials added in thread order: deterministic for a thread count.
 template <class Body>
 inline std::pair<double, double> parallelSum2Elements(std::int64_t n, Body&& body) {
-  if (n < kSerialElementsBelow || gf::threadCount() == 1) {
+  if (n < kSerialElementsBelow || serialLoops()) {
     double a0 = 0.0, a1 = 0.0, b0 = 0.0, b1 = 0.0;
     std::int64_t i = 0;
     for (; i + 2 <= n; i += 2) {

@@ -1,6 +1,7 @@
 // Momentum predictor: convection (explicit, extrapolated), BDF2 time derivative, implicit
 // viscous and drag terms solved with Jacobi-preconditioned BiCGStab per velocity component.
 #include <cmath>
+#include <limits>
 
 #include "fluid/loops.hpp"
 #include "fluid/schemes.hpp"
@@ -170,12 +171,13 @@ void helmholtzKernel(const Field& x, std::vector<double>& y, const std::vector<s
   });
 }
 
-/// One Jacobi sweep for eps = 1, K = 0 fused with the residual: y = x + D^-1 (b - A x) at the
-/// unknown faces (y = x elsewhere); returns |b - A x|^2 summed line by line in line order
-/// (deterministic). x must have its ghosts filled.
+/// One Chebyshev-accelerated Jacobi sweep for eps = 1, K = 0 fused with the residual:
+///   y <- y + omega (x + D^-1 (b - A x) - y)   at the unknown faces (y = x elsewhere),
+/// where y holds the previous iterate x_{k-1} on entry (omega = 1: plain Jacobi). Returns
+/// |b - A x|^2 summed line by line in line order (deterministic). x must have its ghosts filled.
 double jacobiSweepUniform(const Field& x, Field& y, const double* B, const double* invD,
                           const std::vector<std::uint8_t>& mask, double mu, double timeCoeff, int dims,
-                          std::vector<double>& linePartial) {
+                          double omega, std::vector<double>& linePartial) {
   const CartesianGrid& g = x.grid();
   const auto& pts = x.points();
   double w[3];
@@ -184,6 +186,7 @@ double jacobiSweepUniform(const Field& x, Field& y, const double* B, const doubl
   const double diag = timeCoeff + 2.0 * (w[0] + w[1] + wz);
   const std::ptrdiff_t sy = x.stride(1), sz = x.stride(2);
   const std::int64_t lines = static_cast<std::int64_t>(pts[1]) * pts[2];
+  const bool plainJacobi = omega == 1.0;
   linePartial.resize(static_cast<std::size_t>(lines));
   const double* X = x.data().data();
   double* Y = y.data().data();
@@ -201,7 +204,11 @@ double jacobiSweepUniform(const Field& x, Field& y, const double* B, const doubl
       const double ax = diag * Xl[q] - w[0] * (Xl[q + 1] + Xl[q - 1]) - w[1] * (Xl[q + sy] + Xl[q - sy]) -
                         wz * (Xl[q + sz] + Xl[q - sz]);
       const double r = Ml[q] ? Bl[q] - ax : 0.0;
-      Yl[q] = Xl[q] + r * Dl[q];
+      const double jacobi = Xl[q] + r * Dl[q];
+      // omega = 1 (first sweep): y's old content must not enter even by rounding (restart ==
+      // continuous run, bit for bit).
+      const double next = plainJacobi ? jacobi : Yl[q] + omega * (jacobi - Yl[q]);
+      Yl[q] = Ml[q] ? next : Xl[q];
       acc += r * r;
     };
     for (; i + 2 <= pts[0]; i += 2) {
@@ -288,12 +295,12 @@ void Solver::applyHelmholtz(int c, const Field& x, std::vector<double>& y, doubl
                            dims, false);
 }
 
-int Solver::solveHelmholtz(int c, double dt, double g0) {
+int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
   // Jacobi-preconditioned BiCGStab (van der Vorst 1992) on the correction of u_c. The vectors
   // span the whole flat array (ghosts included) and are zero off the unknown faces, so every
   // vector operation is one contiguous loop.
   if (unknownList_[c].empty()) {
-    uOld_[c].data() = u_[c].data();
+    if (predictor) uOld_[c].data() = u_[c].data();
     return 0;
   }
   Field& x = u_[c];
@@ -351,53 +358,59 @@ int Solver::solveHelmholtz(int c, double dt, double g0) {
   // Initial guess: u^n extrapolated in time, 2 u^n - u^{n-1} (second order).
   double* Uo = uOld_[c].data().data();
   double* Un = krylov_[7].data();
+  // (Corrector solves start from the current velocity and leave u^{n-1} alone.)
   parallelForElements(n, [&](std::int64_t q) {
     invDiag[q] = mask[q] ? 1.0 / invDiag[q] : 0.0;
+    if (!predictor) return;
     Un[q] = X[q];
     if (mask[q]) X[q] = 2.0 * X[q] - Uo[q];
     Uo[q] = Un[q];  // u^{n-1} <- u^n for the next step
   });
   fillVelocityGhosts(x, c, bc_, GhostMode::Full);
-  applyHelmholtz(c, x, krylov_[5], dt, g0);
-  parallelForElements(n, [&](std::int64_t q) {
-    r[q] = mask[q] ? B[q] - t[q] : 0.0;
-    rhat[q] = r[q];
-    p[q] = 0.0;
-    v[q] = 0.0;
-    t[q] = 0.0;
-    s[q] = 0.0;
-  });
   const double bnorm = std::sqrt(parallelSumElements(n, [&](std::int64_t q) { return mask[q] ? B[q] * B[q] : 0.0; }));
   const double tol = momentumTolerance_ * (bnorm > 0.0 ? bnorm : 1.0);
-  double rnorm = std::sqrt(dot(r, r));
   int it = 0;
   // Strongly diagonally dominant systems (small mu dt / h^2): plain Jacobi sweeps are much
   // cheaper than BiCGStab iterations; BiCGStab takes over if they stall.
   double offRatio = 0.0;
   for (int d = 0; d < dims; ++d) offRatio += 2.0 * mu_ / (grid_.spacing[d] * grid_.spacing[d]);
   offRatio /= rho_ * g0 / dt + offRatio;
-  if (offRatio < 0.6 && uniformCoupling_) {
-    // eps = 1, K = 0: fused sweep (one pass + ghost fill per sweep), ping-pong with y.
+  const bool chebyshev = offRatio < 0.6 && uniformCoupling_;
+  // Residual and BiCGStab vectors (the Chebyshev sweeps compute their own residual).
+  auto initialiseKrylov = [&]() {
+    applyHelmholtz(c, x, krylov_[5], dt, g0);
+    return std::sqrt(parallelSumElements(n, [&](std::int64_t q) {
+      r[q] = mask[q] ? B[q] - t[q] : 0.0;
+      rhat[q] = r[q];
+      p[q] = 0.0;
+      v[q] = 0.0;
+      t[q] = 0.0;
+      s[q] = 0.0;
+      return r[q] * r[q];
+    }));
+  };
+  double rnorm = chebyshev ? std::numeric_limits<double>::infinity() : initialiseKrylov();
+  if (chebyshev) {
+    // eps = 1, K = 0: fused sweep (one pass + ghost fill per sweep), ping-pong with y, with
+    // Chebyshev acceleration (Golub and Varga 1961; Saad, Iterative Methods 2003, sec. 12.3): the
+    // Jacobi iteration matrix I - D^-1 A has real eigenvalues in [-offRatio, offRatio]
+    // (Gershgorin; the wall closure rows are more diagonally dominant), so
+    //   omega_1 = 1, omega_2 = 2 / (2 - rho^2), omega_{k+1} = 1 / (1 - rho^2 omega_k / 4)
+    // gives the error reduction (1 - sqrt(1 - rho^2)) / rho per sweep instead of rho (0.31
+    // instead of 0.56 for the 64^3 cavity: half the sweeps).
     const int maxSweeps = 40;
+    const double rho2 = offRatio * offRatio;
+    double omega = 1.0;
     while (rnorm > tol && it < maxSweeps) {
       ++it;
-      rnorm = std::sqrt(jacobiSweepUniform(x, y, B, invDiag, mask, mu_, rho_ * g0 / dt, dims, linePartial_));
+      omega = it == 1 ? 1.0 : (it == 2 ? 2.0 / (2.0 - rho2) : 1.0 / (1.0 - 0.25 * rho2 * omega));
+      rnorm = std::sqrt(jacobiSweepUniform(x, y, B, invDiag, mask, mu_, rho_ * g0 / dt, dims, omega, linePartial_));
       x.data().swap(y.data());
       fillVelocityGhosts(x, c, bc_, GhostMode::Full);
     }
     X = x.data().data();
     Y = y.data().data();
-    if (rnorm > tol) {  // stalled: residual of the current iterate for BiCGStab
-      applyHelmholtz(c, x, krylov_[5], dt, g0);
-      rnorm = std::sqrt(parallelSumElements(n, [&](std::int64_t q) {
-        r[q] = mask[q] ? B[q] - t[q] : 0.0;
-        return r[q] * r[q];
-      }));
-      parallelForElements(n, [&](std::int64_t q) {
-        rhat[q] = r[q];
-        t[q] = 0.0;
-      });
-    }
+    if (rnorm > tol) rnorm = initialiseKrylov();  // stalled: BiCGStab from the current iterate
   } else if (offRatio < 0.6) {
     const int maxSweeps = 40;
     while (rnorm > tol && it < maxSweeps) {
@@ -460,6 +473,59 @@ int Solver::solveHelmholtz(int c, double dt, double g0) {
   }
   fillVelocityGhosts(x, c, bc_, GhostMode::Full);
   return it;
+}
+
+}  // namespace gf::fluid
+
+namespace gf::fluid {
+
+double Solver::correctMomentum(double dt, double g0) {
+  // PISO-style corrector (Issa 1986): the projection corrects the velocity with the time and drag
+  // diagonal only, so u^{n+1} misses the implicit viscous operator applied to the correction. With
+  // the new pressure in the right-hand side, b <- b - a grad(phi), the momentum residual
+  // r = b - A u is that splitting error; the momentum equation is solved again with the new
+  // pressure (from the current velocity) and projected again by the caller. Returns ||r|| / ||b||
+  // before the solve.
+  const int dims = twoD_ ? 2 : 3;
+  const double* E = coupling_.voidFraction.data().data();
+  const double* Phi = phi_.data().data();
+  const bool modelA = model_ == MomentumModel::A;
+  double rr = 0.0, bb = 0.0;
+  for (int c = 0; c < dims; ++c) {
+    Field& u = u_[c];
+    double* R = rhs_[c].data().data();
+    const double* Au = krylov_[5].data();
+    const auto& mask = unknown_[c];
+    const auto& pts = u.points();
+    const std::ptrdiff_t se = p_.stride(c);
+    const double invH = 1.0 / grid_.spacing[c];
+    const auto lines = static_cast<std::int64_t>(pts[1]) * pts[2];
+    auto forLine = [&](std::int64_t line, auto&& body) {
+      const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
+      const std::size_t f0 = u.index(0, j, k), e0 = p_.index(0, j, k);
+      for (int i = 0; i < pts[0]; ++i)
+        if (mask[f0 + i]) body(f0 + i, e0 + i, e0 + i - se);
+    };
+    parallelFor(lines, [&](std::int64_t line) {
+      forLine(line, [&](std::size_t f, std::size_t cc, std::size_t cm) {
+        const double a = modelA ? 0.5 * (E[cc] + E[cm]) : 1.0;
+        R[f] -= a * (Phi[cc] - Phi[cm]) * invH;
+      });
+    });
+    applyHelmholtz(c, u, krylov_[5], dt, g0);
+    bb += parallelSum(lines, [&](std::int64_t line) {
+      double s = 0.0;
+      forLine(line, [&](std::size_t f, std::size_t, std::size_t) { s += R[f] * R[f]; });
+      return s;
+    });
+    rr += parallelSum(lines, [&](std::int64_t line) {
+      double s = 0.0;
+      forLine(line, [&](std::size_t f, std::size_t, std::size_t) { s += (R[f] - Au[f]) * (R[f] - Au[f]); });
+      return s;
+    });
+    stats_.momentumIterations += solveHelmholtz(c, dt, g0, false);
+  }
+  return bb > 0.0 ? std::sqrt(rr / bb) : 0.0;
 }
 
 }  // namespace gf::fluid

@@ -1,5 +1,6 @@
 #include "fluid/multigrid.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "fluid/loops.hpp"
@@ -10,6 +11,7 @@ namespace {
 constexpr int kPreSmooth = 2;
 constexpr int kPostSmooth = 2;
 constexpr std::size_t kCoarsestCells = 64;
+constexpr std::size_t kDenseCells = 256;  // coarsest levels up to this size are solved directly
 constexpr int kCoarsestSweeps = 40;
 
 double dotProduct(const std::vector<double>& a, const std::vector<double>& b) {
@@ -19,39 +21,88 @@ double dotProduct(const std::vector<double>& a, const std::vector<double>& b) {
 
 void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool, 3>& periodic,
                              const std::array<std::vector<double>, 3>& T, const std::array<bool, 6>& dirichlet) {
-  dirichlet_ = dirichlet;
   singular_ = true;
   for (bool d : dirichlet) singular_ = singular_ && !d;
-  levels_.clear();
+  // Levels are rebuilt in place (the coupled solver calls setup every step): vectors keep their
+  // capacity, so a repeated setup on the same grid allocates nothing.
   factors_.clear();
-  PoissonLevel fine;
-  fine.n = n;
-  fine.periodic = periodic;
-  fine.T = T;
-  buildDiagonal(fine, dirichlet);
-  levels_.push_back(std::move(fine));
-  while (true) {
-    const PoissonLevel& L = levels_.back();
+  if (levels_.empty()) levels_.emplace_back();
+  // Axis order: the longest axis first (ties keep the caller's order).
+  perm_ = {0, 1, 2};
+  int longest = 0;
+  for (int a = 1; a < 3; ++a)
+    if (n[a] > n[longest]) longest = a;
+  if (longest != 0) perm_ = {longest, 0, longest == 1 ? 2 : 1};
+  PoissonLevel& F = levels_[0];
+  std::array<bool, 6> dir = dirichlet;
+  for (int q = 0; q < 3; ++q) {
+    F.n[q] = n[perm_[q]];
+    F.periodic[q] = periodic[perm_[q]];
+    dir[2 * q] = dirichlet[2 * perm_[q]];
+    dir[2 * q + 1] = dirichlet[2 * perm_[q] + 1];
+  }
+  dirichlet_ = dir;
+  if (longest == 0) {
+    callerCell_.clear();
+    for (int a = 0; a < 3; ++a) F.T[a].assign(T[a].begin(), T[a].end());
+  } else {
+    // Caller index of internal (i0, i1, i2): caller coordinate perm_[q] is i_q.
+    auto callerIndex = [&](const int* i, int faceAxis) {
+      int e[3];
+      for (int q = 0; q < 3; ++q) e[perm_[q]] = i[q];
+      const std::size_t ex = n[0] + (faceAxis == 0), ey = n[1] + (faceAxis == 1);
+      return static_cast<std::size_t>(e[0]) + ex * (static_cast<std::size_t>(e[1]) + ey * static_cast<std::size_t>(e[2]));
+    };
+    callerCell_.resize(F.cells());
+    for (int k = 0; k < F.n[2]; ++k)
+      for (int j = 0; j < F.n[1]; ++j)
+        for (int i = 0; i < F.n[0]; ++i) {
+          const int idx[3] = {i, j, k};
+          callerCell_[F.faceIndex(-1, i, j, k)] = callerIndex(idx, -1);
+        }
+    for (int q = 0; q < 3; ++q) {
+      std::array<int, 3> fn = F.n;
+      fn[q] += 1;
+      F.T[q].resize(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2]);
+      for (int k = 0; k < fn[2]; ++k)
+        for (int j = 0; j < fn[1]; ++j)
+          for (int i = 0; i < fn[0]; ++i) {
+            const int idx[3] = {i, j, k};
+            F.T[q][F.faceIndex(q, i, j, k)] = T[perm_[q]][callerIndex(idx, perm_[q])];
+          }
+    }
+  }
+  xInternal_.assign(F.cells(), 0.0);
+  bInternal_.assign(F.cells(), 0.0);
+  buildDiagonal(levels_[0], dirichlet_);
+  std::size_t count = 1;
+  while (levels_[count - 1].cells() > kCoarsestCells) {
+    // Coarsen by 2 every axis with more than 1 cell (odd counts: the last coarse cell covers one
+    // fine cell; a 2-cell axis, the depth of a pseudo-2D bed, goes to 1: kept at 2 its coupling
+    // would grow 4x per level relative to the others and point smoothing would stall -- twice the
+    // CG iterations on 2 x 30 x 90).
     std::array<int, 3> f{1, 1, 1};
     bool any = false;
     for (int a = 0; a < 3; ++a) {
-      if (L.n[a] >= 4 && L.n[a] % 2 == 0) {
+      if (levels_[count - 1].n[a] > 1) {
         f[a] = 2;
         any = true;
       }
     }
-    if (!any || L.cells() <= kCoarsestCells) break;
-    PoissonLevel coarse;
-    coarsen(L, coarse, f);
-    buildDiagonal(coarse, dirichlet);
+    if (!any) break;
+    if (levels_.size() <= count) levels_.emplace_back();
+    coarsen(levels_[count - 1], levels_[count], f);
+    buildDiagonal(levels_[count], dirichlet_);
     factors_.push_back(f);
-    levels_.push_back(std::move(coarse));
+    ++count;
   }
+  levels_.resize(count);
   for (auto& L : levels_) {
     L.x.assign(L.cells(), 0.0);
     L.b.assign(L.cells(), 0.0);
     L.r.assign(L.cells(), 0.0);
   }
+  factorCoarsest();
   const std::size_t N = levels_[0].cells();
   activeCells_ = 0.0;
   for (double v : levels_[0].invDiag) activeCells_ += v > 0.0 ? 1.0 : 0.0;
@@ -59,6 +110,102 @@ void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool,
   z_.assign(N, 0.0);
   p_.assign(N, 0.0);
   q_.assign(N, 0.0);
+  zeros_.assign(static_cast<std::size_t>(levels_[0].n[0]) + 1, 0.0);
+}
+
+namespace {
+/// Calls fn(neighbourCell, T) for each coupled neighbour of cell (i, j, k) on level L.
+template <class Fn>
+void forEachNeighbour(const PoissonLevel& L, int i, int j, int k, Fn&& fn) {
+  const int idx[3] = {i, j, k};
+  for (int a = 0; a < 3; ++a) {
+    if (L.n[a] == 1) continue;
+    int hi[3] = {i, j, k};
+    hi[a] += 1;
+    const double tl = L.T[a][L.faceIndex(a, i, j, k)];
+    const double th = L.T[a][L.faceIndex(a, hi[0], hi[1], hi[2])];
+    int m[3] = {i, j, k}, p[3] = {i, j, k};
+    bool hasM = true, hasP = true;
+    if (idx[a] > 0) m[a] -= 1;
+    else if (L.periodic[a]) m[a] = L.n[a] - 1;
+    else hasM = false;
+    if (idx[a] < L.n[a] - 1) p[a] += 1;
+    else if (L.periodic[a]) p[a] = 0;
+    else hasP = false;
+    const auto cell = [&](const int* c) {
+      return static_cast<std::size_t>(c[0]) + static_cast<std::size_t>(L.n[0]) * (c[1] + static_cast<std::size_t>(L.n[1]) * c[2]);
+    };
+    if (hasM) fn(cell(m), tl);
+    if (hasP) fn(cell(p), th);
+  }
+}
+}  // namespace
+
+void MultigridPoisson::factorCoarsest() {
+  // Dense Cholesky factor of the coarsest operator (A + alpha 1 1^T over the active cells when the
+  // problem is singular: its solution of a compatible right-hand side is the zero-mean solution of
+  // A). Falls back to Gauss-Seidel sweeps if the level is too large or not positive definite
+  // (e.g. a fluid region cut off by blocked cells).
+  const PoissonLevel& L = levels_.back();
+  const std::size_t N = L.cells();
+  coarseCholesky_.clear();
+  if (N > kDenseCells) return;
+  std::vector<double>& M = coarseCholesky_;
+  M.assign(N * N, 0.0);
+  double diagSum = 0.0, active = 0.0;
+  for (int k = 0; k < L.n[2]; ++k)
+    for (int j = 0; j < L.n[1]; ++j)
+      for (int i = 0; i < L.n[0]; ++i) {
+        const std::size_t c = static_cast<std::size_t>(i) + static_cast<std::size_t>(L.n[0]) * (j + static_cast<std::size_t>(L.n[1]) * k);
+        if (L.diag[c] <= 0.0) {
+          M[c * N + c] = 1.0;  // isolated cell: x = 0 (its b is 0)
+          continue;
+        }
+        M[c * N + c] += L.diag[c];
+        diagSum += L.diag[c];
+        active += 1.0;
+        forEachNeighbour(L, i, j, k, [&](std::size_t nb, double t) { M[c * N + nb] -= t; });
+      }
+  if (singular_ && active > 0.0) {
+    const double alpha = diagSum / (active * active);
+    for (std::size_t r = 0; r < N; ++r)
+      for (std::size_t c = 0; c < N; ++c)
+        if (L.diag[r] > 0.0 && L.diag[c] > 0.0) M[r * N + c] += alpha;
+  }
+  // In-place Cholesky, lower triangle (row-major).
+  for (std::size_t c = 0; c < N; ++c) {
+    double d = M[c * N + c];
+    for (std::size_t q = 0; q < c; ++q) d -= M[c * N + q] * M[c * N + q];
+    if (!(d > 1e-12 * std::abs(M[c * N + c]))) {
+      coarseCholesky_.clear();
+      return;
+    }
+    d = std::sqrt(d);
+    M[c * N + c] = d;
+    for (std::size_t r = c + 1; r < N; ++r) {
+      double v = M[r * N + c];
+      for (std::size_t q = 0; q < c; ++q) v -= M[r * N + q] * M[c * N + q];
+      M[r * N + c] = v / d;
+    }
+  }
+}
+
+void MultigridPoisson::solveCoarsest(PoissonLevel& L) const {
+  const std::size_t N = L.cells();
+  const double* M = coarseCholesky_.data();
+  double* x = L.x.data();
+  for (std::size_t r = 0; r < N; ++r) {  // L y = b
+    double v = L.b[r];
+    for (std::size_t q = 0; q < r; ++q) v -= M[r * N + q] * x[q];
+    x[r] = v / M[r * N + r];
+  }
+  for (std::size_t r = N; r-- > 0;) {  // L^T x = y
+    double v = x[r];
+    for (std::size_t q = r + 1; q < N; ++q) v -= M[q * N + r] * x[q];
+    x[r] = v / M[r * N + r];
+  }
+  for (std::size_t c = 0; c < N; ++c)
+    if (L.diag[c] <= 0.0) x[c] = 0.0;
 }
 
 void MultigridPoisson::buildDiagonal(PoissonLevel& L, const std::array<bool, 6>& dirichlet) const {
@@ -90,7 +237,7 @@ void MultigridPoisson::buildDiagonal(PoissonLevel& L, const std::array<bool, 6>&
 }
 
 void MultigridPoisson::coarsen(const PoissonLevel& fine, PoissonLevel& coarse, const std::array<int, 3>& f) const {
-  for (int a = 0; a < 3; ++a) coarse.n[a] = fine.n[a] / f[a];
+  for (int a = 0; a < 3; ++a) coarse.n[a] = (fine.n[a] + f[a] - 1) / f[a];
   coarse.periodic = fine.periodic;
   for (int a = 0; a < 3; ++a) {
     const int b = (a + 1) % 3, c = (a + 2) % 3;
@@ -105,12 +252,26 @@ void MultigridPoisson::coarsen(const PoissonLevel& fine, PoissonLevel& coarse, c
         for (int db = 0; db < f[b]; ++db)
           for (int dc = 0; dc < f[c]; ++dc) {
             int F[3];
-            F[a] = C[a] * f[a];
+            F[a] = std::min(C[a] * f[a], fine.n[a]);  // last face of an odd axis: the boundary face
             F[b] = C[b] * f[b] + db;
             F[c] = C[c] * f[c] + dc;
+            if (F[b] >= fine.n[b] || F[c] >= fine.n[c]) continue;  // odd axis: one child only
             sum += fine.T[a][fine.faceIndex(a, F[0], F[1], F[2])];
           }
-        coarse.T[a][coarse.faceIndex(a, I, J, K)] = sum / f[a];
+        // Rediscretisation: divide by the coarse centre distance in fine cells, (size of the
+        // block below + size above) / 2, or the adjacent block's size at a non-periodic boundary
+        // face (there the operator doubles T: half a block to the boundary). 2 everywhere for
+        // even counts; odd counts leave a last block of 1 cell.
+        double distance = 1.0;
+        if (f[a] == 2) {
+          const int nc = coarse.n[a], nf = fine.n[a];
+          auto blockSize = [&](int I) { return std::min(2, nf - 2 * I); };
+          const int below = C[a] > 0 ? C[a] - 1 : (fine.periodic[a] ? nc - 1 : -1);
+          const int above = C[a] < nc ? C[a] : (fine.periodic[a] ? 0 : -1);
+          if (below >= 0 && above >= 0) distance = 0.5 * (blockSize(below) + blockSize(above));
+          else distance = blockSize(below >= 0 ? below : above);
+        }
+        coarse.T[a][coarse.faceIndex(a, I, J, K)] = sum / distance;
       }
     });
   }
@@ -149,7 +310,7 @@ LineStencil lineStencil(const PoissonLevel& L, int j, int k, const double* zeros
 
 void MultigridPoisson::applyLevel(const PoissonLevel& L, const std::vector<double>& xv, std::vector<double>& yv) const {
   const int nx = L.n[0], ny = L.n[1], nz = L.n[2];
-  const std::vector<double> zeros(static_cast<std::size_t>(nx) + 1, 0.0);
+  const std::vector<double>& zeros = zeros_;
   parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
     const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
     const std::size_t base = static_cast<std::size_t>(nx) * line;
@@ -168,40 +329,85 @@ void MultigridPoisson::applyLevel(const PoissonLevel& L, const std::vector<doubl
   });
 }
 
+// Relaxes the cells with (i+j+k) % 2 == colour on grid line (j, k).
+void MultigridPoisson::relaxLine(PoissonLevel& L, int j, int k, int colour) const {
+  const int nx = L.n[0], ny = L.n[1];
+  const std::size_t base = static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * k);
+  double* x = L.x.data() + base;
+  const double* b = L.b.data() + base;
+  const double* inv = L.invDiag.data() + base;
+  const double* Tx = L.T[0].data() + L.faceIndex(0, 0, j, k);
+  const LineStencil st = lineStencil(L, j, k, zeros_.data());
+  const bool perX = L.periodic[0] && nx > 1;
+  auto yz = [&](int i) {
+    return st.tS[i] * x[i + st.oS] + st.tN[i] * x[i + st.oN] + st.tB[i] * x[i + st.oB] + st.tT[i] * x[i + st.oT];
+  };
+  auto relaxEdge = [&](int i) {
+    double s = b[i] + yz(i);
+    if (i > 0) s += Tx[i] * x[i - 1];
+    else if (perX) s += Tx[i] * x[nx - 1];
+    if (i < nx - 1) s += Tx[i + 1] * x[i + 1];
+    else if (perX) s += Tx[i + 1] * x[0];
+    x[i] = s * inv[i];
+  };
+  int i = (j + k + colour) & 1;
+  if (i == 0) {
+    relaxEdge(0);
+    i = 2;
+  }
+  for (; i < nx - 1; i += 2) x[i] = (b[i] + yz(i) + Tx[i] * x[i - 1] + Tx[i + 1] * x[i + 1]) * inv[i];
+  if (i == nx - 1) relaxEdge(i);
+}
+
 // One half-sweep of red-black Gauss-Seidel over the cells with (i+j+k) % 2 == colour.
 void MultigridPoisson::smoothColour(PoissonLevel& L, int colour) const {
-  const int nx = L.n[0], ny = L.n[1], nz = L.n[2];
-  std::vector<double>& xv = L.x;
-  const std::vector<double>& bv = L.b;
-  const std::vector<double> zeros(static_cast<std::size_t>(nx) + 1, 0.0);
-  parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
-    const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
-    const std::size_t base = static_cast<std::size_t>(nx) * line;
-    double* x = xv.data() + base;
-    const double* b = bv.data() + base;
-    const double* inv = L.invDiag.data() + base;
-    const double* Tx = L.T[0].data() + L.faceIndex(0, 0, j, k);
-    const LineStencil st = lineStencil(L, j, k, zeros.data());
-    const bool perX = L.periodic[0] && nx > 1;
-    auto yz = [&](int i) {
-      return st.tS[i] * x[i + st.oS] + st.tN[i] * x[i + st.oN] + st.tB[i] * x[i + st.oB] + st.tT[i] * x[i + st.oT];
-    };
-    auto relaxEdge = [&](int i) {
-      double s = b[i] + yz(i);
-      if (i > 0) s += Tx[i] * x[i - 1];
-      else if (perX) s += Tx[i] * x[nx - 1];
-      if (i < nx - 1) s += Tx[i + 1] * x[i + 1];
-      else if (perX) s += Tx[i + 1] * x[0];
-      x[i] = s * inv[i];
-    };
-    int i = (j + k + colour) & 1;
-    if (i == 0) {
-      relaxEdge(0);
-      i = 2;
-    }
-    for (; i < nx - 1; i += 2) x[i] = (b[i] + yz(i) + Tx[i] * x[i - 1] + Tx[i + 1] * x[i + 1]) * inv[i];
-    if (i == nx - 1) relaxEdge(i);
+  const int ny = L.n[1];
+  parallelFor(static_cast<std::int64_t>(ny) * L.n[2], [&](std::int64_t line) {
+    relaxLine(L, static_cast<int>(line % ny), static_cast<int>(line / ny), colour);
   });
+}
+
+// Colour `first` then colour 1 - first in one pass over memory: plane k of the second colour is
+// relaxed right after plane k + 1 of the first (all its first-colour neighbours are then new and
+// its second-colour neighbours are not coupled to it). Each thread takes a slab of planes; the
+// slab's end planes of the second colour depend on the neighbouring slabs and are relaxed after a
+// barrier. Every cell sees exactly the values of two separate half-sweeps: identical results, for
+// any thread count, with half the memory traffic.
+void MultigridPoisson::smoothPair(PoissonLevel& L, int first) const {
+  const int ny = L.n[1], nz = L.n[2], second = 1 - first;
+  const auto lines = static_cast<std::int64_t>(ny) * nz;
+  if (nz < 4) {
+    smoothColour(L, first);
+    smoothColour(L, second);
+    return;
+  }
+  int slabs = (lines >= kSerialBelow && !serialLoops()) ? gf::threadCount() : 1;
+  slabs = std::min(slabs, nz / 2);
+  auto plane = [&](int k, int colour) {
+    for (int j = 0; j < ny; ++j) relaxLine(L, j, k, colour);
+  };
+  auto lagged = [&](std::int64_t s) {
+    const int k0 = static_cast<int>(nz * s / slabs), k1 = static_cast<int>(nz * (s + 1) / slabs);
+    for (int k = k0; k < k1; ++k) {
+      plane(k, first);
+      if (k - 1 > k0) plane(k - 1, second);
+    }
+  };
+  auto ends = [&](std::int64_t s) {
+    const int k0 = static_cast<int>(nz * s / slabs), k1 = static_cast<int>(nz * (s + 1) / slabs);
+    plane(k0, second);
+    if (k1 - 1 != k0) plane(k1 - 1, second);
+  };
+  if (slabs == 1) {
+    lagged(0);
+    ends(0);
+  } else {
+    // One slab per thread (gf::parallelFor would run so few iterations serially).
+#pragma omp parallel for schedule(static)
+    for (int q = 0; q < slabs; ++q) lagged(q);
+#pragma omp parallel for schedule(static)
+    for (int q = 0; q < slabs; ++q) ends(q);
+  }
 }
 
 // Forward then backward lexicographic Gauss-Seidel (serial; small levels only): symmetric.
@@ -242,16 +448,17 @@ void MultigridPoisson::vcycle(int l) {
   PoissonLevel& L = levels_[l];
   std::fill(L.x.begin(), L.x.end(), 0.0);
   const bool coarsest = l + 1 == static_cast<int>(levels_.size());
+  if (coarsest && !coarseCholesky_.empty()) {
+    solveCoarsest(L);
+    return;
+  }
   if (coarsest || !L.redBlackSafe) {
     // Coarsest level (or a level that cannot be red-black coloured): symmetric GS sweeps.
     const int sweeps = coarsest ? kCoarsestSweeps : kPreSmooth;
     for (int s = 0; s < sweeps; ++s) symmetricGaussSeidel(L);
     if (coarsest) return;
   } else {
-    for (int s = 0; s < kPreSmooth; ++s) {
-      smoothColour(L, 0);
-      smoothColour(L, 1);
-    }
+    for (int s = 0; s < kPreSmooth; ++s) smoothPair(L, 0);
   }
   applyLevel(L, L.x, L.r);
   PoissonLevel& C = levels_[l + 1];
@@ -263,9 +470,11 @@ void MultigridPoisson::vcycle(int l) {
     const int J = static_cast<int>(line % cy), K = static_cast<int>(line / cy);
     for (int I = 0; I < cx; ++I) {
       double s = 0.0;
-      for (int dk = 0; dk < f[2]; ++dk)
-        for (int dj = 0; dj < f[1]; ++dj)
-          for (int di = 0; di < f[0]; ++di) {
+      const int dkEnd = std::min(f[2], L.n[2] - K * f[2]), djEnd = std::min(f[1], ny - J * f[1]),
+                diEnd = std::min(f[0], nx - I * f[0]);
+      for (int dk = 0; dk < dkEnd; ++dk)
+        for (int dj = 0; dj < djEnd; ++dj)
+          for (int di = 0; di < diEnd; ++di) {
             const std::size_t c = static_cast<std::size_t>(I * f[0] + di) +
                                   static_cast<std::size_t>(nx) * (J * f[1] + dj + static_cast<std::size_t>(ny) * (K * f[2] + dk));
             s += L.b[c] - L.r[c];
@@ -284,10 +493,7 @@ void MultigridPoisson::vcycle(int l) {
   if (!L.redBlackSafe) {
     for (int s = 0; s < kPostSmooth; ++s) symmetricGaussSeidel(L);
   } else {
-    for (int s = 0; s < kPostSmooth; ++s) {
-      smoothColour(L, 1);
-      smoothColour(L, 0);
-    }
+    for (int s = 0; s < kPostSmooth; ++s) smoothPair(L, 1);
   }
 }
 
@@ -308,8 +514,29 @@ void MultigridPoisson::removeMean(std::vector<double>& v) const {
   parallelForElements(n, [&](std::int64_t i) { v[i] = L.invDiag[i] > 0.0 ? v[i] - mean : 0.0; });
 }
 
+void MultigridPoisson::apply(const std::vector<double>& x, std::vector<double>& y) const {
+  if (callerCell_.empty()) return applyLevel(levels_[0], x, y);
+  std::vector<double> xi(callerCell_.size()), yi(callerCell_.size());
+  for (std::size_t c = 0; c < xi.size(); ++c) xi[c] = x[callerCell_[c]];
+  applyLevel(levels_[0], xi, yi);
+  for (std::size_t c = 0; c < yi.size(); ++c) y[callerCell_[c]] = yi[c];
+}
+
 PoissonResult MultigridPoisson::solve(std::vector<double>& x, const std::vector<double>& b, double tol,
                                       int maxIterations) {
+  if (callerCell_.empty()) return solveInternal(x, b, tol, maxIterations);
+  const std::size_t N = callerCell_.size();
+  for (std::size_t c = 0; c < N; ++c) {
+    xInternal_[c] = x[callerCell_[c]];
+    bInternal_[c] = b[callerCell_[c]];
+  }
+  const PoissonResult result = solveInternal(xInternal_, bInternal_, tol, maxIterations);
+  for (std::size_t c = 0; c < N; ++c) x[callerCell_[c]] = xInternal_[c];
+  return result;
+}
+
+PoissonResult MultigridPoisson::solveInternal(std::vector<double>& x, const std::vector<double>& b, double tol,
+                                              int maxIterations) {
   PoissonResult result;
   const auto n = static_cast<std::int64_t>(b.size());
   std::copy(b.begin(), b.end(), r_.begin());

@@ -7,12 +7,13 @@
 // with face transmissibilities T_f = beta_f * area_f / spacing_f >= 0 (beta = eps-weighted
 // 1/(rho gamma0/dt + K)); A is symmetric positive (semi-)definite.
 //
-// Multigrid: cell-centred coarsening by 2 in every direction that can be halved, coarse
-// transmissibility = sum of the covered fine ones / coarsening factor along the face normal
+// Multigrid: cell-centred coarsening by 2 in every direction with more than 1 cell (odd counts
+// leave a last coarse cell of one fine cell), coarse
+// transmissibility = sum of the covered fine ones / distance of the coarse centres in fine cells
 // (rediscretisation), restriction = sum of children, prolongation = piecewise constant
 // (its transpose), red-black Gauss-Seidel smoothing (red-black before, black-red after, so the
-// V-cycle is a symmetric operator and CG stays valid), symmetric Gauss-Seidel on the coarsest
-// level. Pure Neumann/periodic problems are singular: the mean is projected out.
+// V-cycle is a symmetric operator and CG stays valid), a dense Cholesky solve on the coarsest
+// level (<= 64 cells; symmetric Gauss-Seidel sweeps if that is not possible). Pure Neumann/periodic problems are singular: the mean is projected out.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -29,6 +30,7 @@ struct PoissonLevel {
   bool redBlackSafe = true;              // colouring is a proper 2-colouring (no odd periodic axis)
 
   std::size_t cells() const { return static_cast<std::size_t>(n[0]) * n[1] * n[2]; }
+  /// Index of face (i, j, k) normal to axis (axis -1: cell (i, j, k)).
   std::size_t faceIndex(int axis, int i, int j, int k) const {
     const std::size_t nx = n[0] + (axis == 0), ny = n[1] + (axis == 1);
     return static_cast<std::size_t>(i) + nx * (static_cast<std::size_t>(j) + ny * static_cast<std::size_t>(k));
@@ -55,15 +57,21 @@ class MultigridPoisson {
 
   bool singular() const { return singular_; }
   int levels() const { return static_cast<int>(levels_.size()); }
-  /// y = A x on the fine level.
-  void apply(const std::vector<double>& x, std::vector<double>& y) const { applyLevel(levels_[0], x, y); }
+  /// y = A x on the fine level (caller's cell order).
+  void apply(const std::vector<double>& x, std::vector<double>& y) const;
 
  private:
+  PoissonResult solveInternal(std::vector<double>& x, const std::vector<double>& b, double relativeTolerance,
+                              int maxIterations);
   void buildDiagonal(PoissonLevel& L, const std::array<bool, 6>& dirichlet) const;
   void coarsen(const PoissonLevel& fine, PoissonLevel& coarse, const std::array<int, 3>& factor) const;
   void applyLevel(const PoissonLevel& L, const std::vector<double>& x, std::vector<double>& y) const;
+  void relaxLine(PoissonLevel& L, int j, int k, int colour) const;
   void smoothColour(PoissonLevel& L, int colour) const;
+  void smoothPair(PoissonLevel& L, int first) const;
   void symmetricGaussSeidel(PoissonLevel& L) const;
+  void factorCoarsest();
+  void solveCoarsest(PoissonLevel& L) const;
   void vcycle(int level);
   void precondition(const std::vector<double>& r, std::vector<double>& z);
   void removeMean(std::vector<double>& v) const;
@@ -74,6 +82,14 @@ class MultigridPoisson {
   bool singular_ = true;
   double activeCells_ = 0.0;  // fine cells with a non-zero diagonal
   std::vector<double> r_, z_, p_, q_;
+  // Internally the longest axis is the fastest-varying one (a 2 x 30 x 90 bed is stored as
+  // 90 x 2 x 30: long grid lines, little per-line overhead); perm_[internal axis] = caller's axis,
+  // callerCell_[internal cell] = the caller's index of that cell (empty when perm_ is the identity).
+  std::array<int, 3> perm_{0, 1, 2};
+  std::vector<std::size_t> callerCell_;
+  std::vector<double> xInternal_, bInternal_;
+  std::vector<double> zeros_;           // zero coefficient line (missing neighbours), n_x + 1 long
+  std::vector<double> coarseCholesky_;  // dense Cholesky factor of the coarsest level (empty: GS sweeps)
 };
 
 }  // namespace gf::fluid

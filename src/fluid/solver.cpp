@@ -1,12 +1,16 @@
 #include "fluid/solver.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 
+#include "dem/walls/stl_reader.hpp"
 #include "fluid/initial_condition.hpp"
 #include "fluid/loops.hpp"
+#include "fluid/solid_mesh.hpp"
 
 namespace gf::fluid {
 
@@ -19,6 +23,7 @@ Solver::Solver(Params& root, const Domain& domain, const Vec3& gravity) : domain
   Params fluid = root.section({"fluid", "-", "incompressible (volume-averaged) Navier-Stokes solver"});
   readParams(fluid, domain);
   coupling_ = CouplingFields(grid_);
+  bc_.voidFraction = &coupling_.voidFraction;
   for (int c = 0; c < 3; ++c) {
     const auto st = static_cast<Staggering>(c + 1);
     u_[c] = Field(grid_, st);
@@ -82,6 +87,13 @@ void Solver::readParams(Params& fluid, const Domain& domain) {
   pressureTolerance_ = pressure.real({"tolerance", "-", "relative residual ||b - A x|| / ||b||", Range::positive()}, 1e-8);
   pressureMaxIterations_ =
       static_cast<int>(pressure.integer({"max_iterations", "-", "iteration cap", Range::atLeast(1)}, 200));
+  correctors_ = static_cast<int>(fluid.integer(
+      {"correctors", "-",
+       "pressure projections per step: 1 = incremental projection; N > 1 adds PISO-style correctors (momentum "
+       "residual with the new pressure, one Jacobi update, projection again) that remove the splitting error "
+       "of the implicit viscous and drag terms",
+       Range{1.0, 20.0, true, true}},
+      1));
 
   Params drive = fluid.section({"driving", "-", "mean pressure gradient or flow rate along a periodic axis"});
   const std::string mode = drive.choice({"mode", "-", "none | pressure_gradient | flow_rate"},
@@ -105,13 +117,34 @@ void Solver::readParams(Params& fluid, const Domain& domain) {
 }
 
 void Solver::markBlocked(Params& fluid) {
-  for (Params& b : fluid.list({"blocked", "-", "solid (blocked) regions: boxes and cylinders"})) {
-    const std::string shape = b.choice({"shape", "-", "box or cylinder"}, {"box", "cylinder"});
+  for (Params& b : fluid.list({"blocked", "-", "solid (blocked) regions: boxes, cylinders and closed STL meshes"})) {
+    const std::string shape =
+        b.choice({"shape", "-", "box, cylinder or stl (cells whose centre is inside a closed triangle mesh)"},
+                 {"box", "cylinder", "stl"});
     const Vec3 lo = b.vec3({"min", "m", "box lower corner"}, Vec3{});
     const Vec3 hi = b.vec3({"max", "m", "box upper corner"}, Vec3{});
     const Vec3 centre = b.vec3({"centre", "m", "cylinder: a point on the axis"}, Vec3{});
     const int axis = axisFromName(b.choice({"axis", "-", "cylinder axis direction"}, {"x", "y", "z"}, "z"));
     const double radius = b.real({"radius", "m", "cylinder radius"}, 0.0);
+    const std::string file =
+        b.text({"file", "-", "stl: path of a closed ASCII or binary STL mesh (relative to the case file)"}, "");
+    const double scale =
+        b.real({"scale", "-", "stl: factor applied to the coordinates (e.g. 0.001 for mm)", Range::positive()}, 1.0);
+    const Vec3 offset = b.vec3({"offset", "m", "stl: translation applied after scaling"}, Vec3{});
+    if (b.documenting()) continue;
+    std::optional<SolidMesh> mesh;
+    if (shape == "stl") {
+      std::filesystem::path path(file);
+      if (path.is_relative()) path = std::filesystem::path(b.fileName()).parent_path() / path;
+      try {
+        auto triangles = dem::readStl(path.string());
+        for (auto& t : triangles)
+          for (Vec3& v : t) v = scale * v + offset;
+        mesh.emplace(std::move(triangles));
+      } catch (const Error& e) {
+        b.fail("file", "'" + file + "'", std::string("a readable STL file (") + e.what() + ")");
+      }
+    }
     for (int k = 0; k < grid_.cells[2]; ++k)
       for (int j = 0; j < grid_.cells[1]; ++j)
         for (int i = 0; i < grid_.cells[0]; ++i) {
@@ -119,11 +152,13 @@ void Solver::markBlocked(Params& fluid) {
           bool inside;
           if (shape == "box") {
             inside = x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z;
-          } else {
+          } else if (shape == "cylinder") {
             double r2 = 0.0;
             for (int a = 0; a < 3; ++a)
               if (a != axis) r2 += (x[a] - centre[a]) * (x[a] - centre[a]);
             inside = r2 <= radius * radius;
+          } else {
+            inside = mesh->contains(x);
           }
           if (inside) blocked_[p_.index(i, j, k)] = 1;
         }
@@ -156,15 +191,17 @@ void Solver::buildUnknownMasks() {
 }
 
 void Solver::fillAllGhosts() {
+  fillCellGhosts(coupling_.voidFraction, bc_, CellGhostKind::ZeroGradient);  // first: superficial inlets use it
   for (int c = 0; c < 3; ++c) fillVelocityGhosts(u_[c], c, bc_, GhostMode::Full);
   fillCellGhosts(p_, bc_, CellGhostKind::Pressure);
-  fillCellGhosts(coupling_.voidFraction, bc_, CellGhostKind::ZeroGradient);
-  fillCellGhosts(coupling_.voidFractionOld, bc_, CellGhostKind::ZeroGradient);
-  fillCellGhosts(epsOlder_, bc_, CellGhostKind::ZeroGradient);
+  // eps_old, eps_older, F and u_p are read only at momentum unknown faces (cell on each side:
+  // a ghost only across a periodic boundary); K also at pressure outlet faces.
+  fillCellGhosts(coupling_.voidFractionOld, bc_, CellGhostKind::PeriodicOnly);
+  fillCellGhosts(epsOlder_, bc_, CellGhostKind::PeriodicOnly);
   fillCellGhosts(coupling_.dragCoefficient, bc_, CellGhostKind::ZeroGradient);
   for (int c = 0; c < 3; ++c) {
-    fillCellGhosts(coupling_.forceDensity[c], bc_, CellGhostKind::ZeroGradient);
-    fillCellGhosts(coupling_.particleVelocity[c], bc_, CellGhostKind::ZeroGradient);
+    fillCellGhosts(coupling_.forceDensity[c], bc_, CellGhostKind::PeriodicOnly);
+    fillCellGhosts(coupling_.particleVelocity[c], bc_, CellGhostKind::PeriodicOnly);
   }
   if (scalarEnabled_) fillCellGhosts(scalar_, bc_, CellGhostKind::Scalar);
 }
@@ -219,7 +256,9 @@ void Solver::setScalar(const std::function<double(const Vec3&)>& f) {
 
 void Solver::step(double dt) {
   ScopedPhase timer(timers_, Phase::Fluid);
+  const SerialFluidScope serial(grid_.interiorCellCount() < kSerialCellsBelow);
   bc_.time = time_ + dt;  // prescribed (ramped) boundary velocities at the new time level
+  bc_.voidFraction = &coupling_.voidFraction;  // (the solver may have been moved)
   fillAllGhosts();
   const auto& eps = coupling_.voidFraction.data();
   const auto& epsOld = coupling_.voidFractionOld.data();
@@ -247,6 +286,17 @@ void Solver::step(double dt) {
   {
     ScopedPhase pt(timers_, Phase::PressureSolve);
     project(dt, g0);
+  }
+  if (correctors_ > 1) {
+    firstIncrement_ = poissonX_;  // the initial guess of the next step's first projection
+    for (int corr = 1; corr < correctors_; ++corr) {
+      stats_.momentumResidual = correctMomentum(dt, g0);
+      balanceOutflow(dt);
+      ScopedPhase pt(timers_, Phase::PressureSolve);
+      std::fill(poissonX_.begin(), poissonX_.end(), 0.0);
+      project(dt, g0);
+    }
+    poissonX_.swap(firstIncrement_);
   }
   if (driveMode_ == DrivingMode::FlowRate) controlFlowRate(dt, g0);
   for (int c = 0; c < 3; ++c) convOld_[c].data().swap(conv_[c].data());

@@ -46,6 +46,9 @@ struct StepStatistics {
   double pressureResidual = 0.0;  // relative
   int momentumIterations = 0;     // summed over components
   double maxDivergence = 0.0;     // max |div(eps u) + d eps/dt| after projection, 1/s
+  /// correctors > 1: relative momentum residual ||b - A u|| / ||b|| of the velocity and pressure
+  /// entering the last corrector (the splitting error the correctors remove); 0 otherwise.
+  double momentumResidual = 0.0;
 };
 
 class Solver {
@@ -101,7 +104,8 @@ class Solver {
   // momentum.cpp
   void computeConvection(Field out[3]) const;
   void assembleMomentum(int c, double dt, double gamma0, double gamma1, double gamma2, double ext1, double ext2);
-  int solveHelmholtz(int c, double dt, double gamma0);
+  /// predictor: start from 2 u^n - u^{n-1} and move u^n to uOld_; else (corrector) start from u.
+  int solveHelmholtz(int c, double dt, double gamma0, bool predictor = true);
   void applyHelmholtz(int c, const Field& x, std::vector<double>& y, double dt, double gamma0) const;
   /// Calls body(face, cell) for every face of boundary side s (0 = min, 1 = max) normal to axis a:
   /// face = (i, j, k) of the normal-velocity face, cell = the interior cell next to it.
@@ -124,6 +128,7 @@ class Solver {
   void balanceOutflow(double dt);
   void project(double dt, double gamma0);
   void controlFlowRate(double dt, double gamma0);
+  double correctMomentum(double dt, double gamma0);
   double divergenceAt(int i, int j, int k, double dt) const;
   // scalar.cpp
   void advanceScalar(double dt);
@@ -141,6 +146,7 @@ class Solver {
   int momentumMaxIterations_ = 200;
   double pressureTolerance_ = 1e-8;
   int pressureMaxIterations_ = 200;
+  int correctors_ = 1;  // pressure projections per step (PISO-style correctors beyond the first)
   DrivingMode driveMode_ = DrivingMode::None;
   int driveAxis_ = 0;
   double drive_ = 0.0;         // -dp/dx applied as body force, Pa/m
@@ -162,7 +168,7 @@ class Solver {
   MultigridPoisson poisson_;
   double poissonKey_ = -1.0;  // rho gamma0 / dt of the current multigrid setup (-1: rebuild)
   bool uniformCoupling_ = true;
-  std::vector<double> poissonRhs_, poissonX_;
+  std::vector<double> poissonRhs_, poissonX_, firstIncrement_;
 
   double time_ = 0.0, dtPrev_ = 0.0, lastDt_ = 0.0;
   long long steps_ = 0;
