@@ -416,24 +416,7 @@ void MultigridPoisson::symmetricGaussSeidel(PoissonLevel& L) const {
   auto relax = [&](int i, int j, int k) {
     const std::size_t c = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
     double s = L.b[c];
-    const int idx[3] = {i, j, k};
-    for (int a = 0; a < 3; ++a) {
-      if (L.n[a] == 1) continue;
-      int lo[3] = {i, j, k}, hi[3] = {i, j, k};
-      hi[a] += 1;
-      const double tl = L.T[a][L.faceIndex(a, lo[0], lo[1], lo[2])];
-      const double th = L.T[a][L.faceIndex(a, hi[0], hi[1], hi[2])];
-      int m[3] = {i, j, k}, p[3] = {i, j, k};
-      bool hasM = true, hasP = true;
-      if (idx[a] > 0) m[a] -= 1;
-      else if (L.periodic[a]) m[a] = L.n[a] - 1;
-      else hasM = false;
-      if (idx[a] < L.n[a] - 1) p[a] += 1;
-      else if (L.periodic[a]) p[a] = 0;
-      else hasP = false;
-      if (hasM) s += tl * L.x[static_cast<std::size_t>(m[0]) + static_cast<std::size_t>(nx) * (m[1] + static_cast<std::size_t>(ny) * m[2])];
-      if (hasP) s += th * L.x[static_cast<std::size_t>(p[0]) + static_cast<std::size_t>(nx) * (p[1] + static_cast<std::size_t>(ny) * p[2])];
-    }
+    forEachNeighbour(L, i, j, k, [&](std::size_t n, double t) { s += t * L.x[n]; });
     L.x[c] = s * L.invDiag[c];
   };
   for (int k = 0; k < nz; ++k)
