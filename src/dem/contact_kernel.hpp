@@ -211,9 +211,12 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
   const std::uint32_t* rowStart = list.rowStart.data();
   const std::uint32_t* partner = list.partner.data();
   Vec3* history = list.tangentialHistory.data();
+  const double* inverseMass = inverse.mass;
+  const double* inverseMoment = inverse.moment;
+  const bool external = p.hasExternalForces;
   auto kick = [&](std::size_t i) {
-    velocity[i] += (halfKick * inverse.mass[i]) * force[i];
-    angularVelocity[i] += (halfKick * inverse.moment[i]) * torque[i];
+    velocity[i] += (halfKick * inverseMass[i]) * force[i];
+    angularVelocity[i] += (halfKick * inverseMoment[i]) * torque[i];
   };
 #pragma omp parallel num_threads(threads)
   {
@@ -225,10 +228,16 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
     std::uint32_t touchedLo = static_cast<std::uint32_t>(n), touchedHi = 0;
     std::size_t initialised = begin;  // force/torque of [begin, initialised) hold the body forces
     auto initialiseUpTo = [&](std::size_t stop) {
-      for (; initialised < stop; ++initialised) {
-        force[initialised] = mass[initialised] * gravity + externalForce[initialised];
-        torque[initialised] = externalTorque[initialised];
-      }
+      if (external)
+        for (; initialised < stop; ++initialised) {
+          force[initialised] = mass[initialised] * gravity + externalForce[initialised];
+          torque[initialised] = externalTorque[initialised];
+        }
+      else
+        for (; initialised < stop; ++initialised) {
+          force[initialised] = mass[initialised] * gravity;
+          torque[initialised] = Vec3{};
+        }
     };
     for (std::size_t i = begin; i < end; ++i) {
       const std::uint32_t first = rowStart[i], last = rowStart[i + 1];

@@ -85,6 +85,9 @@ void ParticleSet::load(BinaryReader& in) {
   torque = in.getVector<Vec3>();
   externalForce = in.getVector<Vec3>();
   externalTorque = in.getVector<Vec3>();
+  hasExternalForces = false;
+  for (std::size_t i = 0; i < externalForce.size() && !hasExternalForces; ++i)
+    hasExternalForces = normSquared(externalForce[i]) != 0.0 || normSquared(externalTorque[i]) != 0.0;
   const std::size_t n = id.size();
   if (type.size() != n || radius.size() != n || mass.size() != n || position.size() != n || velocity.size() != n ||
       angularVelocity.size() != n || force.size() != n || torque.size() != n || externalForce.size() != n ||

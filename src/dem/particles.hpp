@@ -21,6 +21,9 @@ struct ParticleSet {
   std::vector<Vec3> torque;           // N m
   std::vector<Vec3> externalForce;    // N, set by the coupling (fluid forces), held over DEM substeps
   std::vector<Vec3> externalTorque;   // N m
+  /// False while externalForce and externalTorque are all zero (DEM-only runs): the force loop then
+  /// skips reading them (same result, fewer bytes per particle-step). Whoever writes them sets it.
+  bool hasExternalForces = false;
 
   std::size_t size() const { return id.size(); }
 
