@@ -20,23 +20,18 @@ using namespace gf;
 constexpr int kParticles = 25000;
 const char* kSchemes[] = {"pcm", "divided", "kernel", "big_particle"};
 
-struct Bed {
-  CartesianGrid grid;
-  dem::ParticleSet particles;
+/// A uniform upflow u_z with a uniform pressure gradient on a grid, and its coupling fields.
+struct UniformFlow {
   Field u[3], gradP[3];
   CouplingFields fields;
-  Bed() {
-    grid.cells = {2, 30, 90};
-    grid.spacing = {0.005, 0.005, 0.005};
-    std::mt19937_64 rng(42);
-    std::uniform_real_distribution<double> x(0.001, 0.009), y(0.001, 0.149), z(0.001, 0.224), v(-0.1, 0.1);
-    for (int i = 0; i < kParticles; ++i) particles.add(i, 0, 0.001, 2500.0, {x(rng), y(rng), z(rng)}, {v(rng), v(rng), v(rng)});
+  double density = 1000.0, viscosity = 1e-3, timeStep = 1e-4;
+  void setUp(const CartesianGrid& grid, double uz, double dpdz) {
     for (int a = 0; a < 3; ++a) {
       u[a] = Field(grid);
       gradP[a] = Field(grid);
     }
-    for (auto& val : u[2].data()) val = 0.5;
-    for (auto& val : gradP[2].data()) val = -9810.0;
+    for (auto& val : u[2].data()) val = uz;
+    for (auto& val : gradP[2].data()) val = dpdz;
     fields = CouplingFields(grid);
   }
   coupling::FluidView view() const {
@@ -45,10 +40,23 @@ struct Bed {
       f.velocity[a] = &u[a];
       f.pressureGradient[a] = &gradP[a];
     }
-    f.density = 1000.0;
-    f.viscosity = 1e-3;
-    f.timeStep = 1e-4;
+    f.density = density;
+    f.viscosity = viscosity;
+    f.timeStep = timeStep;
     return f;
+  }
+};
+
+struct Bed : UniformFlow {
+  CartesianGrid grid;
+  dem::ParticleSet particles;
+  Bed() {
+    grid.cells = {2, 30, 90};
+    grid.spacing = {0.005, 0.005, 0.005};
+    std::mt19937_64 rng(42);
+    std::uniform_real_distribution<double> x(0.001, 0.009), y(0.001, 0.149), z(0.001, 0.224), v(-0.1, 0.1);
+    for (int i = 0; i < kParticles; ++i) particles.add(i, 0, 0.001, 2500.0, {x(rng), y(rng), z(rng)}, {v(rng), v(rng), v(rng)});
+    setUp(grid, 0.5, -9810.0);
   }
 };
 
@@ -105,12 +113,10 @@ void BM_CouplingForcesAllOn(benchmark::State& state) {
 /// Gidaspow drag, divided void fraction, trilinear interpolation, implicit exchange. 80 % of the
 /// spheres in a bed of mean eps ~ 0.5 (Ergun branch), 20 % above it (Wen-Yu branch); particles
 /// sorted by cell, as the DEM's Morton reordering leaves them.
-struct BubblingBed {
+struct BubblingBed : UniformFlow {
   static constexpr int kCount = 24750;
   CartesianGrid grid;
   dem::ParticleSet particles;
-  Field u[3], gradP[3];
-  CouplingFields fields;
   BubblingBed() {
     grid.cells = {2, 30, 90};
     grid.spacing = {0.0075, 0.005, 0.005};
@@ -126,24 +132,10 @@ struct BubblingBed {
     }
     std::sort(ps.begin(), ps.end(), [](const P& a, const P& b) { return a.key < b.key; });
     for (int i = 0; i < kCount; ++i) particles.add(i, 0, 0.00125, 2526.0, ps[i].x, ps[i].v);
-    for (int a = 0; a < 3; ++a) {
-      u[a] = Field(grid);
-      gradP[a] = Field(grid);
-    }
-    for (auto& val : u[2].data()) val = 3.5;
-    for (auto& val : gradP[2].data()) val = -12000.0;
-    fields = CouplingFields(grid);
-  }
-  coupling::FluidView view() const {
-    coupling::FluidView f;
-    for (int a = 0; a < 3; ++a) {
-      f.velocity[a] = &u[a];
-      f.pressureGradient[a] = &gradP[a];
-    }
-    f.density = 1.2;
-    f.viscosity = 1.8e-5;
-    f.timeStep = 2e-5;
-    return f;
+    density = 1.2;  // air
+    viscosity = 1.8e-5;
+    timeStep = 2e-5;
+    setUp(grid, 3.5, -12000.0);
   }
 };
 
