@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "dem/contact/contact_batch.hpp"
 #include "dem/contact/contact_force.hpp"
 #include "dem/contact/contact_table.hpp"
 #include "dem/neighbour_list.hpp"
@@ -184,10 +185,12 @@ struct InverseInertia {
 /// halfKick != 0) applies the closing velocity-Verlet half kick v += halfKick F/m, w += halfKick T/I
 /// to each thread's block once its forces are final (one pass less over memory).
 ///
-/// One pass per block: force/torque of particle j are set to the body forces just before the first
-/// row that adds to them (rows hold ascending partners j > i), so initialisation, contacts and
-/// the kick of a particle happen while its data are in cache. The order of the additions is the
-/// same as with a separate initialisation pass.
+/// Rows are processed in runs: the touching pairs of a run are gathered into a ContactBatch,
+/// evaluated there in one vectorised loop, then added row by row in list order. Force/torque of
+/// particle j are set to the body forces just before the first row that adds to them (rows hold
+/// ascending partners j > i), so initialisation, contacts and the kick of a particle happen while
+/// its data are in cache. The order of the additions is the same as with a separate
+/// initialisation pass and one contact at a time.
 template <NormalLaw N, RollingLaw R, CohesionLaw C>
 void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& wallList, const WallState& walls,
                           const ContactTable& table, const PeriodicBox& box, const Vec3& gravity, double dt,
@@ -196,7 +199,7 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
   const std::size_t n = p.size();
   const int threads = omp_get_max_threads();
   buffers.prepare(threads, n);
-  const int types = table.count();
+  const std::uint32_t types = static_cast<std::uint32_t>(table.count());
   const PairCoefficients* coefficients = table.data();
   Vec3* force = p.force.data();
   Vec3* torque = p.torque.data();
@@ -211,6 +214,7 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
   const std::uint32_t* rowStart = list.rowStart.data();
   const std::uint32_t* partner = list.partner.data();
   Vec3* history = list.tangentialHistory.data();
+  Vec3* rollingHistory = list.rollingHistory.data();
   const double* inverseMass = inverse.mass;
   const double* inverseMoment = inverse.moment;
   const bool external = p.hasExternalForces;
@@ -239,57 +243,100 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
           torque[initialised] = Vec3{};
         }
     };
-    for (std::size_t i = begin; i < end; ++i) {
+    // Before row i adds to its partners: body forces of all particles up to its last partner.
+    auto initialiseForRow = [&](std::size_t i) {
       const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
       initialiseUpTo(first < last ? std::min<std::size_t>(end, std::max<std::size_t>(i, partner[last - 1]) + 1)
                                   : i + 1);
-      if (first < last) {
-        const Vec3 xi = position[i], vi = velocity[i], wi = angularVelocity[i];
-        const double ri = radius[i], mi = mass[i];
-        const PairCoefficients* rowCoefficients = coefficients + type[i] * types;
-        Vec3 fi{}, tqi{};
-        for (std::uint32_t k = first; k < last; ++k) {
-          const std::uint32_t j = partner[k];
-          const Vec3 d = box.minimumImage(xi - position[j]);
-          const double rj = radius[j];
-          const double dist2 = normSquared(d);
-          const double rsum = ri + rj;
-          if (dist2 >= rsum * rsum) {
-            history[k] = Vec3{};
-            if constexpr (R == RollingLaw::Epsd) list.rollingHistory[k] = Vec3{};
-            continue;
-          }
-          const double dist = sqrtNonNegative(dist2);
-          ContactGeometry g;
-          g.normal = (1.0 / dist) * d;
-          g.overlap = rsum - dist;
-          const Vec3 wj = angularVelocity[j];
-          g.relativeVelocity = vi - velocity[j] - cross(ri * wi + rj * wj, g.normal);
-          g.relativeAngularVelocity = wi - wj;
-          // R* = r_i r_j/(r_i + r_j) and m* = m_i m_j/(m_i + m_j) with one division.
-          const double mj = mass[j], msum = mi + mj;
-          const double inv = 1.0 / (rsum * msum);
-          g.effectiveRadius = ri * rj * msum * inv;
-          g.effectiveMass = mi * mj * rsum * inv;
-          if constexpr (R == RollingLaw::Epsd)
-            g.rollingInertia = 1.0 / (1.0 / (1.4 * mi * ri * ri) + 1.0 / (1.4 * mj * rj * rj));
-          const ContactResult c = contactForce<N, R, C>(rowCoefficients[type[j]], g, history[k],
-                                                        R == RollingLaw::Epsd ? &list.rollingHistory[k] : nullptr, dt);
-          // Torque of the tangential force: -R n x F_t on both (contact point -R_i n from i, +R_j n from j).
-          const Vec3 nxf = cross(g.normal, c.tangential);
-          fi += c.force;
-          tqi += c.rollingTorque - ri * nxf;
-          const Vec3 tqj = -rj * nxf - c.rollingTorque;
-          if (j < end) {
-            force[j] -= c.force;
-            torque[j] += tqj;
-          } else {
-            bufferForce[j - end] -= c.force;
-            bufferTorque[j - end] += tqj;
-            touchedLo = std::min(touchedLo, j);
-            touchedHi = std::max(touchedHi, j + 1);
-          }
+    };
+    thread_local ContactBatch batch;
+    ContactBatch& b = batch;
+    // Appends the touching pairs among entries [from, to) of row i to the batch; clears the
+    // history of the others (the touching ones get theirs back in scatterEntries).
+    auto gatherRow = [&](std::size_t i, std::uint32_t from, std::uint32_t to) {
+      const Vec3 xi = position[i], vi = velocity[i], wi = angularVelocity[i];
+      const double ri = radius[i], mi = mass[i];
+      const std::uint32_t rowPair = static_cast<std::uint32_t>(type[i]) * types;
+      const std::uint32_t start = b.size;
+      std::uint32_t m = start;
+      for (std::uint32_t k = from; k < to; ++k) {
+        const std::uint32_t j = partner[k];
+        const Vec3 d = box.minimumImage(xi - position[j]);
+        const double rj = radius[j];
+        const double dist2 = normSquared(d);
+        const double rsum = ri + rj;
+        b.entry[m] = k;
+        b.partner[m] = j;
+        b.dx[m] = d.x;
+        b.dy[m] = d.y;
+        b.dz[m] = d.z;
+        b.dist2[m] = dist2;
+        b.rj[m] = rj;
+        const Vec3 h = history[k];
+        b.hx[m] = h.x;
+        b.hy[m] = h.y;
+        b.hz[m] = h.z;
+        history[k] = Vec3{};
+        if constexpr (R == RollingLaw::Epsd) {
+          const Vec3 rh = rollingHistory[k];
+          b.rhx[m] = rh.x;
+          b.rhy[m] = rh.y;
+          b.rhz[m] = rh.z;
+          rollingHistory[k] = Vec3{};
         }
+        m += !(dist2 >= rsum * rsum) ? 1u : 0u;  // touching: keep the entry
+      }
+      for (std::uint32_t e = start; e < m; ++e) {
+        const std::uint32_t j = b.partner[e];
+        const double rj = b.rj[e];
+        const Vec3 wj = angularVelocity[j];
+        const Vec3 dv = vi - velocity[j];
+        const Vec3 s = ri * wi + rj * wj;
+        b.dvx[e] = dv.x;
+        b.dvy[e] = dv.y;
+        b.dvz[e] = dv.z;
+        b.sx[e] = s.x;
+        b.sy[e] = s.y;
+        b.sz[e] = s.z;
+        if constexpr (R != RollingLaw::None) {
+          const Vec3 dw = wi - wj;
+          b.dwx[e] = dw.x;
+          b.dwy[e] = dw.y;
+          b.dwz[e] = dw.z;
+        }
+        b.ri[e] = ri;
+        b.mi[e] = mi;
+        b.mj[e] = mass[j];
+        const std::uint32_t pair = rowPair + static_cast<std::uint32_t>(type[j]);
+        b.pairIndex[e] = pair;
+        b.uniform = b.uniform && pair == b.pairIndex[0];
+      }
+      b.size = m;
+    };
+    // Adds the evaluated pairs [from, to) of one row: to i (fi, tqi) and to the partners.
+    auto scatterEntries = [&](std::uint32_t from, std::uint32_t to, Vec3& fi, Vec3& tqi) {
+      for (std::uint32_t e = from; e < to; ++e) {
+        const std::uint32_t j = b.partner[e], k = b.entry[e];
+        const Vec3 f{b.fx[e], b.fy[e], b.fz[e]};
+        const Vec3 tqj{b.tjx[e], b.tjy[e], b.tjz[e]};
+        fi += f;
+        tqi += Vec3{b.tix[e], b.tiy[e], b.tiz[e]};
+        history[k] = Vec3{b.hx[e], b.hy[e], b.hz[e]};
+        if constexpr (R == RollingLaw::Epsd) rollingHistory[k] = Vec3{b.rhx[e], b.rhy[e], b.rhz[e]};
+        if (j < end) {
+          force[j] -= f;
+          torque[j] += tqj;
+        } else {
+          bufferForce[j - end] -= f;
+          bufferTorque[j - end] += tqj;
+          touchedLo = std::min(touchedLo, j);
+          touchedHi = std::max(touchedHi, j + 1);
+        }
+      }
+    };
+    // Completes row i: its own sum, its wall contacts and (first block) its kick.
+    auto finishRow = [&](std::size_t i, const Vec3& fi, const Vec3& tqi) {
+      if (rowStart[i] < rowStart[i + 1]) {
         force[i] += fi;
         torque[i] += tqi;
       }
@@ -297,7 +344,51 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
       // Half list: all contributions to i come from rows <= i; in the first block none come from
       // other threads, so the force is final here and the kick can use it while it is in cache.
       if (t == 0 && halfKick != 0.0) kick(i);
+    };
+    // Rows [runBegin, runEnd) are gathered; rowEnd[r] is where row runBegin + r ends in the batch.
+    std::uint32_t rowEnd[ContactBatch::kCapacity];
+    std::size_t runBegin = begin, runEnd = begin;
+    auto flush = [&]() {
+      evaluateBatch<N, R, C>(b, coefficients, dt);
+      std::uint32_t e = 0;
+      for (std::size_t i = runBegin; i < runEnd; ++i) {
+        initialiseForRow(i);
+        Vec3 fi{}, tqi{};
+        const std::uint32_t stop = rowEnd[i - runBegin];
+        scatterEntries(e, stop, fi, tqi);
+        e = stop;
+        finishRow(i, fi, tqi);
+      }
+      runBegin = runEnd;
+      b.size = 0;
+      b.uniform = true;
+    };
+    b.size = 0;
+    b.uniform = true;
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
+      const std::uint32_t length = last - first;
+      if (b.size + length > ContactBatch::kCapacity || runEnd - runBegin == ContactBatch::kCapacity) flush();
+      if (length > ContactBatch::kCapacity) {
+        // A row longer than a batch (a large particle among small ones): evaluated in pieces.
+        initialiseForRow(i);
+        Vec3 fi{}, tqi{};
+        for (std::uint32_t from = first; from < last; from += ContactBatch::kCapacity) {
+          gatherRow(i, from, std::min(last, from + ContactBatch::kCapacity));
+          evaluateBatch<N, R, C>(b, coefficients, dt);
+          scatterEntries(0, b.size, fi, tqi);
+          b.size = 0;
+          b.uniform = true;
+        }
+        finishRow(i, fi, tqi);
+        runBegin = runEnd = i + 1;
+        continue;
+      }
+      gatherRow(i, first, last);
+      rowEnd[runEnd - runBegin] = b.size;
+      ++runEnd;
     }
+    flush();
     initialiseUpTo(end);
     if (t < team - 1) {
       buffers.lo[t] = touchedLo;

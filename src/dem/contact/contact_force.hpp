@@ -36,19 +36,26 @@ struct ContactResult {
 };
 
 /// Rotates a history vector into the current tangent plane, keeping its length. In a lasting
-/// contact the normal turns by ~1e-6 rad per step, so (h.n)^2/|h|^2 ~ 1e-12: the rescaling
-/// (a square root and a division) is skipped below 1e-10, a relative length change of < 5e-11.
-inline void projectOntoTangentPlane(Vec3& h, const Vec3& n) {
+/// contact the normal turns by ~1e-6 rad per step, so (h.n)^2/|h|^2 ~ 1e-12: the rescaling is
+/// skipped below 1e-10, a relative length change of < 5e-11. Without branches (both outcomes are
+/// computed, one is selected) so that the batched contact loop vectorises.
+[[gnu::always_inline]] inline void projectOntoTangentPlane(Vec3& h, const Vec3& n) {
   const double before = normSquared(h);
   const double hn = dot(h, n);
   h -= hn * n;
-  if (hn * hn <= 1e-10 * before) return;
   const double after = normSquared(h);
-  if (after > 0.0) h *= sqrtNonNegative(before / after);
+  const bool rescale = (hn * hn > 1e-10 * before) & (after > 0.0);
+  const double scale = sqrtNonNegative(before / (after > 0.0 ? after : 1.0));
+  h *= rescale ? scale : 1.0;  // x 1.0 is exact
+}
+
+/// Per-component choice between two vectors (compiles to blends, no branch).
+[[gnu::always_inline]] inline Vec3 select(bool condition, const Vec3& a, const Vec3& b) {
+  return {condition ? a.x : b.x, condition ? a.y : b.y, condition ? a.z : b.z};
 }
 
 template <NormalLaw N, RollingLaw R, CohesionLaw C>
-inline ContactResult contactForce(const PairCoefficients& c, const ContactGeometry& g, Vec3& tangentialHistory,
+[[gnu::always_inline]] inline ContactResult contactForce(const PairCoefficients& c, const ContactGeometry& g, Vec3& tangentialHistory,
                                   Vec3* rollingHistory, double dt) {
   const Vec3& n = g.normal;
   const double vn = dot(g.relativeVelocity, n);  // < 0 while approaching
@@ -81,10 +88,13 @@ inline ContactResult contactForce(const PairCoefficients& c, const ContactGeomet
   Vec3 ft = -kt * tangentialHistory - gammaT * vt;
   const double ftMax = c.friction * normalForce;
   const double ftMag2 = normSquared(ft);
-  if (ftMag2 > ftMax * ftMax) {
-    ft *= ftMax / sqrtNonNegative(ftMag2);
-    tangentialHistory = (kt > 0.0) ? (-1.0 / kt) * (ft + gammaT * vt) : Vec3{};
-  }
+  // Sliding: F_t scaled back onto the Coulomb limit, the spring set to match it. Computed
+  // always and selected (no branch); the unused lanes may hold inf/NaN, never selected.
+  const bool sliding = ftMag2 > ftMax * ftMax;
+  const Vec3 ftSliding = (ftMax / sqrtNonNegative(ftMag2)) * ft;
+  const Vec3 historySliding = select(kt > 0.0, (-1.0 / kt) * (ftSliding + gammaT * vt), Vec3{});
+  ft = select(sliding, ftSliding, ft);
+  tangentialHistory = select(sliding, historySliding, tangentialHistory);
 
   ContactResult r;
   r.force = normalTotal * n + ft;

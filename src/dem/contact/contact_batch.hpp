@@ -1,0 +1,98 @@
+#pragma once
+// Batched particle-particle contacts: the touching pairs of a run of neighbour-list rows are
+// gathered into small structure-of-arrays scratch arrays, evaluated in one straight loop without
+// branches (contactForce is branch-free for the rolling-free laws, so the compiler vectorises the
+// loop; the square roots and divisions of several contacts then overlap instead of forming one
+// long latency chain per contact), and scattered back in list order by the caller. Every value is
+// computed with the same operations in the same order as one contact at a time: same results.
+#include <cstdint>
+
+#include "core/vec3.hpp"
+#include "dem/contact/contact_force.hpp"
+
+namespace gf::dem {
+
+/// Scratch arrays of one batch (per thread; fixed size, so that the compiler sees that the arrays
+/// do not overlap). Inputs are filled by the gather, outputs by evaluateBatch().
+struct ContactBatch {
+  static constexpr std::uint32_t kCapacity = 128;
+
+  std::uint32_t size = 0;  // touching pairs gathered
+  bool uniform = true;     // all pairs of the batch use coefficients pairIndex[0]
+  // Inputs.
+  alignas(64) std::uint32_t entry[kCapacity];      // neighbour-list entry k
+  alignas(64) std::uint32_t partner[kCapacity];    // particle j
+  alignas(64) std::uint32_t pairIndex[kCapacity];  // coefficient index type_i * types + type_j
+  alignas(64) double dx[kCapacity], dy[kCapacity], dz[kCapacity];  // x_i - x_j (minimum image)
+  alignas(64) double dist2[kCapacity];                               // |x_i - x_j|^2
+  alignas(64) double dvx[kCapacity], dvy[kCapacity], dvz[kCapacity];  // v_i - v_j
+  alignas(64) double sx[kCapacity], sy[kCapacity], sz[kCapacity];     // r_i w_i + r_j w_j
+  alignas(64) double dwx[kCapacity], dwy[kCapacity], dwz[kCapacity];  // w_i - w_j (rolling laws)
+  alignas(64) double ri[kCapacity], rj[kCapacity], mi[kCapacity], mj[kCapacity];
+  alignas(64) double hx[kCapacity], hy[kCapacity], hz[kCapacity];     // tangential history, in/out
+  alignas(64) double rhx[kCapacity], rhy[kCapacity], rhz[kCapacity];  // rolling history (EPSD), in/out
+  // Outputs.
+  alignas(64) double fx[kCapacity], fy[kCapacity], fz[kCapacity];     // force on i (j: the negative)
+  alignas(64) double tix[kCapacity], tiy[kCapacity], tiz[kCapacity];  // torque on i
+  alignas(64) double tjx[kCapacity], tjy[kCapacity], tjz[kCapacity];  // torque on j
+};
+
+/// Evaluates the contact law for every gathered pair (contactForce, as for one contact).
+template <NormalLaw N, RollingLaw R, CohesionLaw C, bool Uniform>
+inline void evaluateBatchAs(ContactBatch& b, const PairCoefficients* coefficients, double dt) {
+  const std::uint32_t count = b.size;
+  const PairCoefficients uniformPair = coefficients[b.pairIndex[0]];
+  for (std::uint32_t e = 0; e < count; ++e) {
+    const Vec3 d{b.dx[e], b.dy[e], b.dz[e]};
+    const double dist = sqrtNonNegative(b.dist2[e]);
+    const double ri = b.ri[e], rj = b.rj[e], mi = b.mi[e], mj = b.mj[e];
+    const double rsum = ri + rj;
+    ContactGeometry g;
+    g.normal = (1.0 / dist) * d;
+    g.overlap = rsum - dist;
+    g.relativeVelocity = Vec3{b.dvx[e], b.dvy[e], b.dvz[e]} - cross(Vec3{b.sx[e], b.sy[e], b.sz[e]}, g.normal);
+    if constexpr (R != RollingLaw::None) g.relativeAngularVelocity = {b.dwx[e], b.dwy[e], b.dwz[e]};
+    // R* = r_i r_j/(r_i + r_j) and m* = m_i m_j/(m_i + m_j) with one division.
+    const double msum = mi + mj;
+    const double inv = 1.0 / (rsum * msum);
+    g.effectiveRadius = ri * rj * msum * inv;
+    g.effectiveMass = mi * mj * rsum * inv;
+    if constexpr (R == RollingLaw::Epsd)
+      g.rollingInertia = 1.0 / (1.0 / (1.4 * mi * ri * ri) + 1.0 / (1.4 * mj * rj * rj));
+    Vec3 history{b.hx[e], b.hy[e], b.hz[e]};
+    Vec3 rollingHistory{};
+    if constexpr (R == RollingLaw::Epsd) rollingHistory = {b.rhx[e], b.rhy[e], b.rhz[e]};
+    const PairCoefficients& c = Uniform ? uniformPair : coefficients[b.pairIndex[e]];
+    const ContactResult r = contactForce<N, R, C>(c, g, history, &rollingHistory, dt);
+    // Torque of the tangential force: -R n x F_t on both (contact point -R_i n from i, +R_j n from j).
+    const Vec3 nxf = cross(g.normal, r.tangential);
+    const Vec3 ti = r.rollingTorque - ri * nxf;
+    const Vec3 tj = -rj * nxf - r.rollingTorque;
+    b.fx[e] = r.force.x;
+    b.fy[e] = r.force.y;
+    b.fz[e] = r.force.z;
+    b.tix[e] = ti.x;
+    b.tiy[e] = ti.y;
+    b.tiz[e] = ti.z;
+    b.tjx[e] = tj.x;
+    b.tjy[e] = tj.y;
+    b.tjz[e] = tj.z;
+    b.hx[e] = history.x;
+    b.hy[e] = history.y;
+    b.hz[e] = history.z;
+    if constexpr (R == RollingLaw::Epsd) {
+      b.rhx[e] = rollingHistory.x;
+      b.rhy[e] = rollingHistory.y;
+      b.rhz[e] = rollingHistory.z;
+    }
+  }
+}
+
+template <NormalLaw N, RollingLaw R, CohesionLaw C>
+inline void evaluateBatch(ContactBatch& b, const PairCoefficients* coefficients, double dt) {
+  if (b.size == 0) return;
+  if (b.uniform) evaluateBatchAs<N, R, C, true>(b, coefficients, dt);
+  else evaluateBatchAs<N, R, C, false>(b, coefficients, dt);
+}
+
+}  // namespace gf::dem
