@@ -213,6 +213,8 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
   const Vec3* externalTorque = p.externalTorque.data();
   const std::uint32_t* rowStart = list.rowStart.data();
   const std::uint32_t* partner = list.partner.data();
+  const std::size_t entries = list.partner.size();
+  constexpr std::size_t kPrefetchAhead = 16;
   Vec3* history = list.tangentialHistory.data();
   Vec3* rollingHistory = list.rollingHistory.data();
   const double* inverseMass = inverse.mass;
@@ -260,6 +262,13 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
       const std::uint32_t start = b.size;
       std::uint32_t m = start;
       for (std::uint32_t k = from; k < to; ++k) {
+        // Partner data of the entries a few rows ahead: on their way from L2/L3 meanwhile.
+        if (k + kPrefetchAhead < entries) {
+          const std::uint32_t ahead = partner[k + kPrefetchAhead];
+          __builtin_prefetch(position + ahead);
+          __builtin_prefetch(velocity + ahead);
+          __builtin_prefetch(angularVelocity + ahead);
+        }
         const std::uint32_t j = partner[k];
         const Vec3 d = box.minimumImage(xi - position[j]);
         const double rj = radius[j];

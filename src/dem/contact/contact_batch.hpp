@@ -10,6 +10,15 @@
 #include "core/vec3.hpp"
 #include "dem/contact/contact_force.hpp"
 
+// The evaluation loop is compiled also for AVX2 and AVX-512 and picked at run time by the CPU
+// (the generic x86-64 build otherwise vectorises with SSE2, two contacts at a time). The build
+// uses -ffp-contract=off, so no clone fuses a multiply and an add: same results on every CPU.
+#if defined(__x86_64__) && defined(__GNUC__) && defined(__linux__) && !defined(__AVX512F__)
+#define GF_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define GF_VECTOR_CLONES
+#endif
+
 namespace gf::dem {
 
 /// Scratch arrays of one batch (per thread; fixed size, so that the compiler sees that the arrays
@@ -39,7 +48,7 @@ struct ContactBatch {
 
 /// Evaluates the contact law for every gathered pair (contactForce, as for one contact).
 template <NormalLaw N, RollingLaw R, CohesionLaw C, bool Uniform>
-inline void evaluateBatchAs(ContactBatch& b, const PairCoefficients* coefficients, double dt) {
+GF_VECTOR_CLONES void evaluateBatchAs(ContactBatch& b, const PairCoefficients* coefficients, double dt) {
   const std::uint32_t count = b.size;
   const PairCoefficients uniformPair = coefficients[b.pairIndex[0]];
   for (std::uint32_t e = 0; e < count; ++e) {
