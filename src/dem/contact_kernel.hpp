@@ -181,45 +181,304 @@ struct InverseInertia {
   const double* moment;  // 1/I, 1/(kg m^2)
 };
 
+/// One thread's pass over its block of rows [begin, end) of the half neighbour list (see
+/// contactForcesAndKick). Rows are processed in runs: the touching pairs of a run are gathered
+/// into a ContactBatch, evaluated there in one vectorised loop, then added row by row in list
+/// order. Force/torque of particle j are set to the body forces just before the first row that
+/// adds to them (rows hold ascending partners j > i), so initialisation, contacts and the kick of
+/// a particle happen while its data are in cache. The order of the additions is the same as with
+/// a separate initialisation pass and one contact at a time.
+template <NormalLaw N, RollingLaw R, CohesionLaw C>
+struct BlockSweep {
+  // Particles and lists.
+  ParticleSet* particles;
+  Vec3* force;
+  Vec3* torque;
+  Vec3* velocity;
+  Vec3* angularVelocity;
+  const Vec3* position;
+  const double* radius;
+  const double* mass;
+  const std::int32_t* type;
+  const Vec3* externalForce;
+  const Vec3* externalTorque;
+  const double* inverseMass;
+  const double* inverseMoment;
+  const std::uint32_t* rowStart;
+  const std::uint32_t* partner;
+  std::size_t entries;
+  Vec3* history;
+  Vec3* rollingHistory;
+  WallContactList* wallList;
+  const WallState* walls;
+  const ContactTable* table;
+  const PairCoefficients* coefficients;
+  std::uint32_t types;
+  PeriodicBox box;
+  Vec3 gravity;
+  double dt, halfKick;
+  bool external, withWalls, kickHere;  // kickHere: the block's forces are final in the pass
+  // This thread's block.
+  std::size_t begin, end;
+  Vec3* bufferForce;  // partners j >= end (entry j - end)
+  Vec3* bufferTorque;
+  std::uint32_t touchedLo, touchedHi;
+  std::size_t initialised;  // force/torque of [begin, initialised) hold the body forces
+  ContactBatch* batch;
+
+  static constexpr std::size_t kPrefetchAhead = 16;  // list entries
+
+  void initialiseUpTo(std::size_t stop) {
+    std::size_t k = initialised;
+    Vec3* const f = force;
+    Vec3* const tq = torque;
+    if (external)
+      for (; k < stop; ++k) {
+        f[k] = mass[k] * gravity + externalForce[k];
+        tq[k] = externalTorque[k];
+      }
+    else
+      for (; k < stop; ++k) {
+        f[k] = mass[k] * gravity;
+        tq[k] = Vec3{};
+      }
+    initialised = std::max(initialised, stop);
+  }
+  /// Before row i adds to its partners: body forces of all particles up to its last partner.
+  void initialiseForRow(std::size_t i) {
+    const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
+    initialiseUpTo(first < last ? std::min<std::size_t>(end, std::max<std::size_t>(i, partner[last - 1]) + 1)
+                                : i + 1);
+  }
+
+  /// Appends the touching pairs among entries [from, to) of row i to the batch; clears the
+  /// history of all (the touching ones get theirs back in scatterEntries).
+  void gatherRow(std::size_t i, std::uint32_t from, std::uint32_t to) {
+    ContactBatch& b = *batch;
+    const Vec3* const x = position;
+    const Vec3* const v = velocity;
+    const Vec3* const w = angularVelocity;
+    const double* const r = radius;
+    const std::uint32_t* const partnerOf = partner;
+    Vec3* const h = history;
+    const Vec3 xi = x[i], vi = v[i], wi = w[i];
+    const double ri = r[i], mi = mass[i];
+    const std::uint32_t start = b.size;
+    std::uint32_t m = start;
+    for (std::uint32_t k = from; k < to; ++k) {
+      // Partner data of the entries a few rows ahead: on their way from L2/L3 meanwhile.
+      if (k + kPrefetchAhead < entries) {
+        const std::uint32_t ahead = partnerOf[k + kPrefetchAhead];
+        __builtin_prefetch(x + ahead);
+        __builtin_prefetch(v + ahead);
+        __builtin_prefetch(w + ahead);
+      }
+      const std::uint32_t j = partnerOf[k];
+      const Vec3 d = box.minimumImage(xi - x[j]);
+      const double rj = r[j];
+      const double dist2 = normSquared(d);
+      const double rsum = ri + rj;
+      b.entry[m] = k;
+      b.partner[m] = j;
+      b.dx[m] = d.x;
+      b.dy[m] = d.y;
+      b.dz[m] = d.z;
+      b.dist2[m] = dist2;
+      b.rj[m] = rj;
+      const Vec3 hk = h[k];
+      b.hx[m] = hk.x;
+      b.hy[m] = hk.y;
+      b.hz[m] = hk.z;
+      h[k] = Vec3{};
+      if constexpr (R == RollingLaw::Epsd) {
+        const Vec3 rh = rollingHistory[k];
+        b.rhx[m] = rh.x;
+        b.rhy[m] = rh.y;
+        b.rhz[m] = rh.z;
+        rollingHistory[k] = Vec3{};
+      }
+      m += !(dist2 >= rsum * rsum) ? 1u : 0u;  // touching: keep the entry
+    }
+    const std::uint32_t rowPair = static_cast<std::uint32_t>(type[i]) * types;
+    bool uniform = b.uniform;
+    std::uint32_t firstPair = start > 0 ? b.pairIndex[0] : 0;
+    for (std::uint32_t e = start; e < m; ++e) {
+      const std::uint32_t j = b.partner[e];
+      __builtin_prefetch(force + j, 1);
+      __builtin_prefetch(torque + j, 1);
+      const double rj = b.rj[e];
+      const Vec3 wj = w[j];
+      const Vec3 dv = vi - v[j];
+      const Vec3 s = ri * wi + rj * wj;
+      b.dvx[e] = dv.x;
+      b.dvy[e] = dv.y;
+      b.dvz[e] = dv.z;
+      b.sx[e] = s.x;
+      b.sy[e] = s.y;
+      b.sz[e] = s.z;
+      if constexpr (R != RollingLaw::None) {
+        const Vec3 dw = wi - wj;
+        b.dwx[e] = dw.x;
+        b.dwy[e] = dw.y;
+        b.dwz[e] = dw.z;
+      }
+      b.ri[e] = ri;
+      b.mi[e] = mi;
+      b.mj[e] = mass[j];
+      const std::uint32_t pair = rowPair + static_cast<std::uint32_t>(type[j]);
+      b.pairIndex[e] = pair;
+      if (e == 0) firstPair = pair;
+      uniform = uniform && pair == firstPair;
+    }
+    b.uniform = uniform;
+    b.size = m;
+  }
+
+  /// Adds the evaluated pairs [from, to) of one row: to i (fi, tqi) and to the partners.
+  void scatterEntries(std::uint32_t from, std::uint32_t to, Vec3& fi, Vec3& tqi) {
+    const ContactBatch& b = *batch;
+    Vec3* const f = force;
+    Vec3* const tq = torque;
+    Vec3* const h = history;
+    const std::uint32_t blockEnd = static_cast<std::uint32_t>(end);
+    Vec3 sumF = fi, sumT = tqi;
+    for (std::uint32_t e = from; e < to; ++e) {
+      const std::uint32_t j = b.partner[e], k = b.entry[e];
+      const Vec3 fe{b.fx[e], b.fy[e], b.fz[e]};
+      const Vec3 tqj{b.tjx[e], b.tjy[e], b.tjz[e]};
+      sumF += fe;
+      sumT += Vec3{b.tix[e], b.tiy[e], b.tiz[e]};
+      h[k] = Vec3{b.hx[e], b.hy[e], b.hz[e]};
+      if constexpr (R == RollingLaw::Epsd) rollingHistory[k] = Vec3{b.rhx[e], b.rhy[e], b.rhz[e]};
+      if (j < blockEnd) {
+        f[j] -= fe;
+        tq[j] += tqj;
+      } else {
+        bufferForce[j - blockEnd] -= fe;
+        bufferTorque[j - blockEnd] += tqj;
+        touchedLo = std::min(touchedLo, j);
+        touchedHi = std::max(touchedHi, j + 1);
+      }
+    }
+    fi = sumF;
+    tqi = sumT;
+  }
+
+  /// Completes row i: its own sum, its wall contacts and (first block) its kick.
+  void finishRow(std::size_t i, const Vec3& fi, const Vec3& tqi) {
+    if (rowStart[i] < rowStart[i + 1]) {
+      force[i] += fi;
+      torque[i] += tqi;
+    }
+    if (withWalls) wallContactsOfParticle<N, R, C>(*particles, *wallList, *table, *walls, dt, i);
+    // Half list: all contributions to i come from rows <= i; in the first block none come from
+    // other threads, so the force is final here and the kick can use it while it is in cache.
+    if (kickHere) {
+      velocity[i] += (halfKick * inverseMass[i]) * force[i];
+      angularVelocity[i] += (halfKick * inverseMoment[i]) * torque[i];
+    }
+  }
+
+  /// Evaluates the batch and completes rows [runBegin, runEnd) (rowEnd: their ends in the batch).
+  void flush(std::size_t runBegin, std::size_t runEnd, const std::uint32_t* rowEnd) {
+    evaluateBatch<N, R, C>(*batch, coefficients, dt);
+    std::uint32_t e = 0;
+    for (std::size_t i = runBegin; i < runEnd; ++i) {
+      initialiseForRow(i);
+      Vec3 fi{}, tqi{};
+      const std::uint32_t stop = rowEnd[i - runBegin];
+      scatterEntries(e, stop, fi, tqi);
+      e = stop;
+      finishRow(i, fi, tqi);
+    }
+    batch->size = 0;
+    batch->uniform = true;
+  }
+
+  void run() {
+    constexpr std::uint32_t capacity = ContactBatch::kCapacity;
+    std::uint32_t rowEnd[capacity];  // end in the batch of row runBegin + r
+    std::size_t runBegin = begin, runEnd = begin;
+    batch->size = 0;
+    batch->uniform = true;
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
+      const std::uint32_t length = last - first;
+      if (batch->size + length > capacity || runEnd - runBegin == capacity) {
+        flush(runBegin, runEnd, rowEnd);
+        runBegin = runEnd;
+      }
+      if (length > capacity) {
+        // A row longer than a batch (a large particle among small ones): evaluated in pieces.
+        initialiseForRow(i);
+        Vec3 fi{}, tqi{};
+        for (std::uint32_t from = first; from < last; from += capacity) {
+          gatherRow(i, from, std::min(last, from + capacity));
+          evaluateBatch<N, R, C>(*batch, coefficients, dt);
+          scatterEntries(0, batch->size, fi, tqi);
+          batch->size = 0;
+          batch->uniform = true;
+        }
+        finishRow(i, fi, tqi);
+        runBegin = runEnd = i + 1;
+        continue;
+      }
+      gatherRow(i, first, last);
+      rowEnd[runEnd - runBegin] = batch->size;
+      ++runEnd;
+    }
+    flush(runBegin, runEnd, rowEnd);
+    initialiseUpTo(end);
+  }
+};
+
 /// Sets force = body forces + particle-particle + particle-wall contact forces, then (if
 /// halfKick != 0) applies the closing velocity-Verlet half kick v += halfKick F/m, w += halfKick T/I
-/// to each thread's block once its forces are final (one pass less over memory).
-///
-/// Rows are processed in runs: the touching pairs of a run are gathered into a ContactBatch,
-/// evaluated there in one vectorised loop, then added row by row in list order. Force/torque of
-/// particle j are set to the body forces just before the first row that adds to them (rows hold
-/// ascending partners j > i), so initialisation, contacts and the kick of a particle happen while
-/// its data are in cache. The order of the additions is the same as with a separate
-/// initialisation pass and one contact at a time.
+/// to each thread's block once its forces are final (one pass less over memory). Each thread
+/// sweeps its block of rows (BlockSweep), then adds the partner buffers of the threads before it.
 template <NormalLaw N, RollingLaw R, CohesionLaw C>
 void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& wallList, const WallState& walls,
                           const ContactTable& table, const PeriodicBox& box, const Vec3& gravity, double dt,
                           double halfKick, const InverseInertia& inverse, PartnerBuffers& buffers) {
-  const bool withWalls = !walls.primitives->empty();
   const std::size_t n = p.size();
   const int threads = omp_get_max_threads();
   buffers.prepare(threads, n);
-  const std::uint32_t types = static_cast<std::uint32_t>(table.count());
-  const PairCoefficients* coefficients = table.data();
+  BlockSweep<N, R, C> common{};
+  common.particles = &p;
+  common.force = p.force.data();
+  common.torque = p.torque.data();
+  common.velocity = p.velocity.data();
+  common.angularVelocity = p.angularVelocity.data();
+  common.position = p.position.data();
+  common.radius = p.radius.data();
+  common.mass = p.mass.data();
+  common.type = p.type.data();
+  common.externalForce = p.externalForce.data();
+  common.externalTorque = p.externalTorque.data();
+  common.inverseMass = inverse.mass;
+  common.inverseMoment = inverse.moment;
+  common.rowStart = list.rowStart.data();
+  common.partner = list.partner.data();
+  common.entries = list.partner.size();
+  common.history = list.tangentialHistory.data();
+  common.rollingHistory = list.rollingHistory.data();
+  common.wallList = &wallList;
+  common.walls = &walls;
+  common.table = &table;
+  common.coefficients = table.data();
+  common.types = static_cast<std::uint32_t>(table.count());
+  common.box = box;
+  common.gravity = gravity;
+  common.dt = dt;
+  common.halfKick = halfKick;
+  common.external = p.hasExternalForces;
+  common.withWalls = !walls.primitives->empty();
   Vec3* force = p.force.data();
   Vec3* torque = p.torque.data();
   Vec3* velocity = p.velocity.data();
   Vec3* angularVelocity = p.angularVelocity.data();
-  const Vec3* position = p.position.data();
-  const double* radius = p.radius.data();
-  const double* mass = p.mass.data();
-  const std::int32_t* type = p.type.data();
-  const Vec3* externalForce = p.externalForce.data();
-  const Vec3* externalTorque = p.externalTorque.data();
-  const std::uint32_t* rowStart = list.rowStart.data();
-  const std::uint32_t* partner = list.partner.data();
-  const std::size_t entries = list.partner.size();
-  constexpr std::size_t kPrefetchAhead = 16;
-  Vec3* history = list.tangentialHistory.data();
-  Vec3* rollingHistory = list.rollingHistory.data();
   const double* inverseMass = inverse.mass;
   const double* inverseMoment = inverse.moment;
-  const bool external = p.hasExternalForces;
   auto kick = [&](std::size_t i) {
     velocity[i] += (halfKick * inverseMass[i]) * force[i];
     angularVelocity[i] += (halfKick * inverseMoment[i]) * torque[i];
@@ -229,176 +488,19 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
     const int t = omp_get_thread_num();
     const int team = omp_get_num_threads();
     const std::size_t begin = n * t / team, end = n * (t + 1) / team;
-    Vec3* bufferForce = t < team - 1 ? buffers.force[t].data() : nullptr;
-    Vec3* bufferTorque = t < team - 1 ? buffers.torque[t].data() : nullptr;
-    std::uint32_t touchedLo = static_cast<std::uint32_t>(n), touchedHi = 0;
-    std::size_t initialised = begin;  // force/torque of [begin, initialised) hold the body forces
-    auto initialiseUpTo = [&](std::size_t stop) {
-      if (external)
-        for (; initialised < stop; ++initialised) {
-          force[initialised] = mass[initialised] * gravity + externalForce[initialised];
-          torque[initialised] = externalTorque[initialised];
-        }
-      else
-        for (; initialised < stop; ++initialised) {
-          force[initialised] = mass[initialised] * gravity;
-          torque[initialised] = Vec3{};
-        }
-    };
-    // Before row i adds to its partners: body forces of all particles up to its last partner.
-    auto initialiseForRow = [&](std::size_t i) {
-      const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
-      initialiseUpTo(first < last ? std::min<std::size_t>(end, std::max<std::size_t>(i, partner[last - 1]) + 1)
-                                  : i + 1);
-    };
     thread_local ContactBatch batch;
-    ContactBatch& b = batch;
-    // Appends the touching pairs among entries [from, to) of row i to the batch; clears the
-    // history of the others (the touching ones get theirs back in scatterEntries).
-    auto gatherRow = [&](std::size_t i, std::uint32_t from, std::uint32_t to) {
-      const Vec3 xi = position[i], vi = velocity[i], wi = angularVelocity[i];
-      const double ri = radius[i], mi = mass[i];
-      const std::uint32_t rowPair = static_cast<std::uint32_t>(type[i]) * types;
-      const std::uint32_t start = b.size;
-      std::uint32_t m = start;
-      for (std::uint32_t k = from; k < to; ++k) {
-        // Partner data of the entries a few rows ahead: on their way from L2/L3 meanwhile.
-        if (k + kPrefetchAhead < entries) {
-          const std::uint32_t ahead = partner[k + kPrefetchAhead];
-          __builtin_prefetch(position + ahead);
-          __builtin_prefetch(velocity + ahead);
-          __builtin_prefetch(angularVelocity + ahead);
-        }
-        const std::uint32_t j = partner[k];
-        const Vec3 d = box.minimumImage(xi - position[j]);
-        const double rj = radius[j];
-        const double dist2 = normSquared(d);
-        const double rsum = ri + rj;
-        b.entry[m] = k;
-        b.partner[m] = j;
-        b.dx[m] = d.x;
-        b.dy[m] = d.y;
-        b.dz[m] = d.z;
-        b.dist2[m] = dist2;
-        b.rj[m] = rj;
-        const Vec3 h = history[k];
-        b.hx[m] = h.x;
-        b.hy[m] = h.y;
-        b.hz[m] = h.z;
-        history[k] = Vec3{};
-        if constexpr (R == RollingLaw::Epsd) {
-          const Vec3 rh = rollingHistory[k];
-          b.rhx[m] = rh.x;
-          b.rhy[m] = rh.y;
-          b.rhz[m] = rh.z;
-          rollingHistory[k] = Vec3{};
-        }
-        m += !(dist2 >= rsum * rsum) ? 1u : 0u;  // touching: keep the entry
-      }
-      for (std::uint32_t e = start; e < m; ++e) {
-        const std::uint32_t j = b.partner[e];
-        const double rj = b.rj[e];
-        const Vec3 wj = angularVelocity[j];
-        const Vec3 dv = vi - velocity[j];
-        const Vec3 s = ri * wi + rj * wj;
-        b.dvx[e] = dv.x;
-        b.dvy[e] = dv.y;
-        b.dvz[e] = dv.z;
-        b.sx[e] = s.x;
-        b.sy[e] = s.y;
-        b.sz[e] = s.z;
-        if constexpr (R != RollingLaw::None) {
-          const Vec3 dw = wi - wj;
-          b.dwx[e] = dw.x;
-          b.dwy[e] = dw.y;
-          b.dwz[e] = dw.z;
-        }
-        b.ri[e] = ri;
-        b.mi[e] = mi;
-        b.mj[e] = mass[j];
-        const std::uint32_t pair = rowPair + static_cast<std::uint32_t>(type[j]);
-        b.pairIndex[e] = pair;
-        b.uniform = b.uniform && pair == b.pairIndex[0];
-      }
-      b.size = m;
-    };
-    // Adds the evaluated pairs [from, to) of one row: to i (fi, tqi) and to the partners.
-    auto scatterEntries = [&](std::uint32_t from, std::uint32_t to, Vec3& fi, Vec3& tqi) {
-      for (std::uint32_t e = from; e < to; ++e) {
-        const std::uint32_t j = b.partner[e], k = b.entry[e];
-        const Vec3 f{b.fx[e], b.fy[e], b.fz[e]};
-        const Vec3 tqj{b.tjx[e], b.tjy[e], b.tjz[e]};
-        fi += f;
-        tqi += Vec3{b.tix[e], b.tiy[e], b.tiz[e]};
-        history[k] = Vec3{b.hx[e], b.hy[e], b.hz[e]};
-        if constexpr (R == RollingLaw::Epsd) rollingHistory[k] = Vec3{b.rhx[e], b.rhy[e], b.rhz[e]};
-        if (j < end) {
-          force[j] -= f;
-          torque[j] += tqj;
-        } else {
-          bufferForce[j - end] -= f;
-          bufferTorque[j - end] += tqj;
-          touchedLo = std::min(touchedLo, j);
-          touchedHi = std::max(touchedHi, j + 1);
-        }
-      }
-    };
-    // Completes row i: its own sum, its wall contacts and (first block) its kick.
-    auto finishRow = [&](std::size_t i, const Vec3& fi, const Vec3& tqi) {
-      if (rowStart[i] < rowStart[i + 1]) {
-        force[i] += fi;
-        torque[i] += tqi;
-      }
-      if (withWalls) wallContactsOfParticle<N, R, C>(p, wallList, table, walls, dt, i);
-      // Half list: all contributions to i come from rows <= i; in the first block none come from
-      // other threads, so the force is final here and the kick can use it while it is in cache.
-      if (t == 0 && halfKick != 0.0) kick(i);
-    };
-    // Rows [runBegin, runEnd) are gathered; rowEnd[r] is where row runBegin + r ends in the batch.
-    std::uint32_t rowEnd[ContactBatch::kCapacity];
-    std::size_t runBegin = begin, runEnd = begin;
-    auto flush = [&]() {
-      evaluateBatch<N, R, C>(b, coefficients, dt);
-      std::uint32_t e = 0;
-      for (std::size_t i = runBegin; i < runEnd; ++i) {
-        initialiseForRow(i);
-        Vec3 fi{}, tqi{};
-        const std::uint32_t stop = rowEnd[i - runBegin];
-        scatterEntries(e, stop, fi, tqi);
-        e = stop;
-        finishRow(i, fi, tqi);
-      }
-      runBegin = runEnd;
-      b.size = 0;
-      b.uniform = true;
-    };
-    b.size = 0;
-    b.uniform = true;
-    for (std::size_t i = begin; i < end; ++i) {
-      const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
-      const std::uint32_t length = last - first;
-      if (b.size + length > ContactBatch::kCapacity || runEnd - runBegin == ContactBatch::kCapacity) flush();
-      if (length > ContactBatch::kCapacity) {
-        // A row longer than a batch (a large particle among small ones): evaluated in pieces.
-        initialiseForRow(i);
-        Vec3 fi{}, tqi{};
-        for (std::uint32_t from = first; from < last; from += ContactBatch::kCapacity) {
-          gatherRow(i, from, std::min(last, from + ContactBatch::kCapacity));
-          evaluateBatch<N, R, C>(b, coefficients, dt);
-          scatterEntries(0, b.size, fi, tqi);
-          b.size = 0;
-          b.uniform = true;
-        }
-        finishRow(i, fi, tqi);
-        runBegin = runEnd = i + 1;
-        continue;
-      }
-      gatherRow(i, first, last);
-      rowEnd[runEnd - runBegin] = b.size;
-      ++runEnd;
-    }
-    flush();
-    initialiseUpTo(end);
+    BlockSweep<N, R, C> sweep = common;
+    sweep.begin = begin;
+    sweep.end = end;
+    sweep.initialised = begin;
+    sweep.bufferForce = t < team - 1 ? buffers.force[t].data() : nullptr;
+    sweep.bufferTorque = t < team - 1 ? buffers.torque[t].data() : nullptr;
+    sweep.touchedLo = static_cast<std::uint32_t>(n);
+    sweep.touchedHi = 0;
+    sweep.kickHere = t == 0 && halfKick != 0.0;
+    sweep.batch = &batch;
+    sweep.run();
+    const std::uint32_t touchedLo = sweep.touchedLo, touchedHi = sweep.touchedHi;
     if (t < team - 1) {
       buffers.lo[t] = touchedLo;
       buffers.hi[t] = touchedHi;
