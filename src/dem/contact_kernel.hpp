@@ -210,6 +210,7 @@ struct BlockSweep {
   Vec3* history;
   Vec3* rollingHistory;
   WallContactList* wallList;
+  const std::uint32_t* wallRowStart;
   const WallState* walls;
   const ContactTable* table;
   const PairCoefficients* coefficients;
@@ -228,7 +229,7 @@ struct BlockSweep {
 
   static constexpr std::size_t kPrefetchAhead = 16;  // list entries
 
-  void initialiseUpTo(std::size_t stop) {
+  [[gnu::always_inline]] void initialiseUpTo(std::size_t stop) {
     std::size_t k = initialised;
     Vec3* const f = force;
     Vec3* const tq = torque;
@@ -245,15 +246,15 @@ struct BlockSweep {
     initialised = std::max(initialised, stop);
   }
   /// Before row i adds to its partners: body forces of all particles up to its last partner.
-  void initialiseForRow(std::size_t i) {
+  [[gnu::always_inline]] void initialiseForRow(std::size_t i) {
     const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
     initialiseUpTo(first < last ? std::min<std::size_t>(end, std::max<std::size_t>(i, partner[last - 1]) + 1)
                                 : i + 1);
   }
 
-  /// Appends the touching pairs among entries [from, to) of row i to the batch; clears the
-  /// history of all (the touching ones get theirs back in scatterEntries).
-  void gatherRow(std::size_t i, std::uint32_t from, std::uint32_t to) {
+  /// Appends the touching pairs among entries [from, to) of row i to the batch (with their
+  /// history) and clears the history of all.
+  [[gnu::always_inline]] void gatherRow(std::size_t i, std::uint32_t from, std::uint32_t to) {
     ContactBatch& b = *batch;
     const Vec3* const x = position;
     const Vec3* const v = velocity;
@@ -285,25 +286,23 @@ struct BlockSweep {
       b.dz[m] = d.z;
       b.dist2[m] = dist2;
       b.rj[m] = rj;
-      const Vec3 hk = h[k];
-      b.hx[m] = hk.x;
-      b.hy[m] = hk.y;
-      b.hz[m] = hk.z;
-      h[k] = Vec3{};
-      if constexpr (R == RollingLaw::Epsd) {
-        const Vec3 rh = rollingHistory[k];
-        b.rhx[m] = rh.x;
-        b.rhy[m] = rh.y;
-        b.rhz[m] = rh.z;
-        rollingHistory[k] = Vec3{};
-      }
       m += !(dist2 >= rsum * rsum) ? 1u : 0u;  // touching: keep the entry
     }
     const std::uint32_t rowPair = static_cast<std::uint32_t>(type[i]) * types;
     bool uniform = b.uniform;
     std::uint32_t firstPair = start > 0 ? b.pairIndex[0] : 0;
     for (std::uint32_t e = start; e < m; ++e) {
-      const std::uint32_t j = b.partner[e];
+      const std::uint32_t j = b.partner[e], k = b.entry[e];
+      const Vec3 hk = h[k];
+      b.hx[e] = hk.x;
+      b.hy[e] = hk.y;
+      b.hz[e] = hk.z;
+      if constexpr (R == RollingLaw::Epsd) {
+        const Vec3 rh = rollingHistory[k];
+        b.rhx[e] = rh.x;
+        b.rhy[e] = rh.y;
+        b.rhz[e] = rh.z;
+      }
       __builtin_prefetch(force + j, 1);
       __builtin_prefetch(torque + j, 1);
       const double rj = b.rj[e];
@@ -332,10 +331,14 @@ struct BlockSweep {
     }
     b.uniform = uniform;
     b.size = m;
+    // Pairs not in contact lose their history; the touching ones get theirs back in scatterEntries.
+    for (std::uint32_t k = from; k < to; ++k) h[k] = Vec3{};
+    if constexpr (R == RollingLaw::Epsd)
+      for (std::uint32_t k = from; k < to; ++k) rollingHistory[k] = Vec3{};
   }
 
   /// Adds the evaluated pairs [from, to) of one row: to i (fi, tqi) and to the partners.
-  void scatterEntries(std::uint32_t from, std::uint32_t to, Vec3& fi, Vec3& tqi) {
+  [[gnu::always_inline]] void scatterEntries(std::uint32_t from, std::uint32_t to, Vec3& fi, Vec3& tqi) {
     const ContactBatch& b = *batch;
     Vec3* const f = force;
     Vec3* const tq = torque;
@@ -365,12 +368,13 @@ struct BlockSweep {
   }
 
   /// Completes row i: its own sum, its wall contacts and (first block) its kick.
-  void finishRow(std::size_t i, const Vec3& fi, const Vec3& tqi) {
+  [[gnu::always_inline]] void finishRow(std::size_t i, const Vec3& fi, const Vec3& tqi) {
     if (rowStart[i] < rowStart[i + 1]) {
       force[i] += fi;
       torque[i] += tqi;
     }
-    if (withWalls) wallContactsOfParticle<N, R, C>(*particles, *wallList, *table, *walls, dt, i);
+    if (withWalls && wallRowStart[i] != wallRowStart[i + 1])
+      wallContactsOfParticle<N, R, C>(*particles, *wallList, *table, *walls, dt, i);
     // Half list: all contributions to i come from rows <= i; in the first block none come from
     // other threads, so the force is final here and the kick can use it while it is in cache.
     if (kickHere) {
@@ -463,6 +467,7 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
   common.history = list.tangentialHistory.data();
   common.rollingHistory = list.rollingHistory.data();
   common.wallList = &wallList;
+  common.wallRowStart = wallList.rowStart.data();
   common.walls = &walls;
   common.table = &table;
   common.coefficients = table.data();
