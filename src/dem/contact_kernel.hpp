@@ -271,8 +271,10 @@ struct BlockSweep {
       if (k + kPrefetchAhead < entries) {
         const std::uint32_t ahead = partnerOf[k + kPrefetchAhead];
         __builtin_prefetch(x + ahead);
+        __builtin_prefetch(r + ahead);
         __builtin_prefetch(v + ahead);
         __builtin_prefetch(w + ahead);
+        __builtin_prefetch(mass + ahead);
       }
       const std::uint32_t j = partnerOf[k];
       const Vec3 d = box.minimumImage(xi - x[j]);

@@ -72,7 +72,7 @@ GF_VECTOR_CLONES void evaluateBatchAs(ContactBatch& b, const PairCoefficients* c
     Vec3 rollingHistory{};
     if constexpr (R == RollingLaw::Epsd) rollingHistory = {b.rhx[e], b.rhy[e], b.rhz[e]};
     const PairCoefficients& c = Uniform ? uniformPair : coefficients[b.pairIndex[e]];
-    const ContactResult r = contactForce<N, R, C>(c, g, history, &rollingHistory, dt);
+    const ContactResult r = contactForce<N, R, C, true>(c, g, history, &rollingHistory, dt);
     // Torque of the tangential force: -R n x F_t on both (contact point -R_i n from i, +R_j n from j).
     const Vec3 nxf = cross(g.normal, r.tangential);
     const Vec3 ti = r.rollingTorque - ri * nxf;

@@ -36,17 +36,25 @@ struct ContactResult {
 };
 
 /// Rotates a history vector into the current tangent plane, keeping its length. In a lasting
-/// contact the normal turns by ~1e-6 rad per step, so (h.n)^2/|h|^2 ~ 1e-12: the rescaling is
-/// skipped below 1e-10, a relative length change of < 5e-11. Without branches (both outcomes are
-/// computed, one is selected) so that the batched contact loop vectorises.
+/// contact the normal turns by ~1e-6 rad per step, so (h.n)^2/|h|^2 ~ 1e-12: the rescaling
+/// (a square root and a division) is skipped below 1e-10, a relative length change of < 5e-11.
+/// BranchFree (the batched loop, which vectorises): both outcomes computed, one selected; the
+/// scalar form (wall contacts) skips the rare rescaling. Same results.
+template <bool BranchFree = false>
 [[gnu::always_inline]] inline void projectOntoTangentPlane(Vec3& h, const Vec3& n) {
   const double before = normSquared(h);
   const double hn = dot(h, n);
   h -= hn * n;
-  const double after = normSquared(h);
-  const bool rescale = (hn * hn > 1e-10 * before) & (after > 0.0);
-  const double scale = sqrtNonNegative(before / (after > 0.0 ? after : 1.0));
-  h *= rescale ? scale : 1.0;  // x 1.0 is exact
+  if constexpr (BranchFree) {
+    const double after = normSquared(h);
+    const bool rescale = (hn * hn > 1e-10 * before) & (after > 0.0);
+    const double scale = sqrtNonNegative(before / (after > 0.0 ? after : 1.0));
+    h *= rescale ? scale : 1.0;  // x 1.0 is exact
+  } else {
+    if (hn * hn <= 1e-10 * before) return;
+    const double after = normSquared(h);
+    if (after > 0.0) h *= sqrtNonNegative(before / after);
+  }
 }
 
 /// Per-component choice between two vectors (compiles to blends, no branch).
@@ -54,9 +62,10 @@ struct ContactResult {
   return {condition ? a.x : b.x, condition ? a.y : b.y, condition ? a.z : b.z};
 }
 
-template <NormalLaw N, RollingLaw R, CohesionLaw C>
-[[gnu::always_inline]] inline ContactResult contactForce(const PairCoefficients& c, const ContactGeometry& g, Vec3& tangentialHistory,
-                                  Vec3* rollingHistory, double dt) {
+/// BranchFree: see projectOntoTangentPlane (the Coulomb limit likewise); same results.
+template <NormalLaw N, RollingLaw R, CohesionLaw C, bool BranchFree = false>
+[[gnu::always_inline]] inline ContactResult contactForce(const PairCoefficients& c, const ContactGeometry& g,
+                                                         Vec3& tangentialHistory, Vec3* rollingHistory, double dt) {
   const Vec3& n = g.normal;
   const double vn = dot(g.relativeVelocity, n);  // < 0 while approaching
   const Vec3 vt = g.relativeVelocity - vn * n;
@@ -82,19 +91,24 @@ template <NormalLaw N, RollingLaw R, CohesionLaw C>
     normalTotal -= cohesion::simplifiedJkrForce(c.cohesionEnergyDensity, g.effectiveRadius, g.overlap);
 
   // Tangential spring with Coulomb limit (Cundall & Strack 1979; Mindlin stiffness for Hertz).
-  projectOntoTangentPlane(tangentialHistory, n);
+  projectOntoTangentPlane<BranchFree>(tangentialHistory, n);
   tangentialHistory += dt * vt;
   const double gammaT = gammaN * c.tangentialDampingRatio;
   Vec3 ft = -kt * tangentialHistory - gammaT * vt;
   const double ftMax = c.friction * normalForce;
   const double ftMag2 = normSquared(ft);
-  // Sliding: F_t scaled back onto the Coulomb limit, the spring set to match it. Computed
-  // always and selected (no branch); the unused lanes may hold inf/NaN, never selected.
-  const bool sliding = ftMag2 > ftMax * ftMax;
-  const Vec3 ftSliding = (ftMax / sqrtNonNegative(ftMag2)) * ft;
-  const Vec3 historySliding = select(kt > 0.0, (-1.0 / kt) * (ftSliding + gammaT * vt), Vec3{});
-  ft = select(sliding, ftSliding, ft);
-  tangentialHistory = select(sliding, historySliding, tangentialHistory);
+  if constexpr (BranchFree) {
+    // Sliding: F_t scaled back onto the Coulomb limit, the spring set to match it. Computed
+    // always and selected; the unused lanes may hold inf/NaN, never selected.
+    const bool sliding = ftMag2 > ftMax * ftMax;
+    const Vec3 ftSliding = (ftMax / sqrtNonNegative(ftMag2)) * ft;
+    const Vec3 historySliding = select(kt > 0.0, (-1.0 / kt) * (ftSliding + gammaT * vt), Vec3{});
+    ft = select(sliding, ftSliding, ft);
+    tangentialHistory = select(sliding, historySliding, tangentialHistory);
+  } else if (ftMag2 > ftMax * ftMax) {
+    ft *= ftMax / sqrtNonNegative(ftMag2);
+    tangentialHistory = (kt > 0.0) ? (-1.0 / kt) * (ft + gammaT * vt) : Vec3{};
+  }
 
   ContactResult r;
   r.force = normalTotal * n + ft;
@@ -105,7 +119,7 @@ template <NormalLaw N, RollingLaw R, CohesionLaw C>
     if constexpr (R == RollingLaw::ConstantTorque) {
       r.rollingTorque = rolling::constantTorque(c.rollingFriction, g.effectiveRadius, normalForce, wt);
     } else {
-      projectOntoTangentPlane(*rollingHistory, n);
+      projectOntoTangentPlane<BranchFree>(*rollingHistory, n);
       const double kr = rolling::epsdStiffness(knLinear, c.rollingFriction, g.effectiveRadius);
       r.rollingTorque = rolling::epsdTorque(*rollingHistory, kr, c.rollingFriction * g.effectiveRadius * normalForce,
                                             c.rollingDamping, g.rollingInertia, wt, dt);
