@@ -206,7 +206,6 @@ struct BlockSweep {
   const double* inverseMoment;
   const std::uint32_t* rowStart;
   const std::uint32_t* partner;
-  std::size_t entries;
   Vec3* history;
   Vec3* rollingHistory;
   WallContactList* wallList;
@@ -226,8 +225,6 @@ struct BlockSweep {
   std::uint32_t touchedLo, touchedHi;
   std::size_t initialised;  // force/torque of [begin, initialised) hold the body forces
   ContactBatch* batch;
-
-  static constexpr std::size_t kPrefetchAhead = 16;  // list entries
 
   [[gnu::always_inline]] void initialiseUpTo(std::size_t stop) {
     std::size_t k = initialised;
@@ -267,15 +264,6 @@ struct BlockSweep {
     const std::uint32_t start = b.size;
     std::uint32_t m = start;
     for (std::uint32_t k = from; k < to; ++k) {
-      // Partner data of the entries a few rows ahead: on their way from L2/L3 meanwhile.
-      if (k + kPrefetchAhead < entries) {
-        const std::uint32_t ahead = partnerOf[k + kPrefetchAhead];
-        __builtin_prefetch(x + ahead);
-        __builtin_prefetch(r + ahead);
-        __builtin_prefetch(v + ahead);
-        __builtin_prefetch(w + ahead);
-        __builtin_prefetch(mass + ahead);
-      }
       const std::uint32_t j = partnerOf[k];
       const Vec3 d = box.minimumImage(xi - x[j]);
       const double rj = r[j];
@@ -286,7 +274,6 @@ struct BlockSweep {
       b.dx[m] = d.x;
       b.dy[m] = d.y;
       b.dz[m] = d.z;
-      b.dist2[m] = dist2;
       b.rj[m] = rj;
       m += !(dist2 >= rsum * rsum) ? 1u : 0u;  // touching: keep the entry
     }
@@ -305,8 +292,6 @@ struct BlockSweep {
         b.rhy[e] = rh.y;
         b.rhz[e] = rh.z;
       }
-      __builtin_prefetch(force + j, 1);
-      __builtin_prefetch(torque + j, 1);
       const double rj = b.rj[e];
       const Vec3 wj = w[j];
       const Vec3 dv = vi - v[j];
@@ -465,7 +450,6 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
   common.inverseMoment = inverse.moment;
   common.rowStart = list.rowStart.data();
   common.partner = list.partner.data();
-  common.entries = list.partner.size();
   common.history = list.tangentialHistory.data();
   common.rollingHistory = list.rollingHistory.data();
   common.wallList = &wallList;

@@ -33,7 +33,6 @@ struct ContactBatch {
   alignas(64) std::uint32_t partner[kCapacity];    // particle j
   alignas(64) std::uint32_t pairIndex[kCapacity];  // coefficient index type_i * types + type_j
   alignas(64) double dx[kCapacity], dy[kCapacity], dz[kCapacity];  // x_i - x_j (minimum image)
-  alignas(64) double dist2[kCapacity];                               // |x_i - x_j|^2
   alignas(64) double dvx[kCapacity], dvy[kCapacity], dvz[kCapacity];  // v_i - v_j
   alignas(64) double sx[kCapacity], sy[kCapacity], sz[kCapacity];     // r_i w_i + r_j w_j
   alignas(64) double dwx[kCapacity], dwy[kCapacity], dwz[kCapacity];  // w_i - w_j (rolling laws)
@@ -53,7 +52,7 @@ GF_VECTOR_CLONES void evaluateBatchAs(ContactBatch& b, const PairCoefficients* c
   const PairCoefficients uniformPair = coefficients[b.pairIndex[0]];
   for (std::uint32_t e = 0; e < count; ++e) {
     const Vec3 d{b.dx[e], b.dy[e], b.dz[e]};
-    const double dist = sqrtNonNegative(b.dist2[e]);
+    const double dist = sqrtNonNegative(normSquared(d));  // as in the gather's contact test
     const double ri = b.ri[e], rj = b.rj[e], mi = b.mi[e], mj = b.mj[e];
     const double rsum = ri + rj;
     ContactGeometry g;
