@@ -395,6 +395,13 @@ struct BlockSweep {
     for (std::size_t i = begin; i < end; ++i) {
       const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
       const std::uint32_t length = last - first;
+      if (length == 0 && runBegin == runEnd) {
+        // No neighbours and nothing pending (free flight): complete the row at once.
+        initialiseUpTo(i + 1);
+        finishRow(i, Vec3{}, Vec3{});
+        runBegin = runEnd = i + 1;
+        continue;
+      }
       if (batch->size + length > capacity || runEnd - runBegin == capacity) {
         flush(runBegin, runEnd, rowEnd);
         runBegin = runEnd;
@@ -414,7 +421,7 @@ struct BlockSweep {
         runBegin = runEnd = i + 1;
         continue;
       }
-      gatherRow(i, first, last);
+      if (length > 0) gatherRow(i, first, last);
       rowEnd[runEnd - runBegin] = batch->size;
       ++runEnd;
     }
