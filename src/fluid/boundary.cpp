@@ -19,8 +19,12 @@ void forEachLine(const Field& f, int axis, Body&& body) {
   const auto& pts = f.points();
   const int n1 = pts[b1] + 2 * g, n2 = pts[b2] + 2 * g;
   // Lines are independent (each writes only its own ghost points): threaded for large faces.
+  // Consecutive lines are neighbours along the lower of the two other axes (x for the y lines),
+  // so that they touch neighbouring memory, not points a plane apart.
+  const bool qFastest = b2 < b1;
   parallelFor(static_cast<std::int64_t>(n1) * n2, [&](std::int64_t line) {
-    const int p = static_cast<int>(line % n1) - g, q = static_cast<int>(line / n1) - g;
+    const int p = static_cast<int>(qFastest ? line / n2 : line % n1) - g;
+    const int q = static_cast<int>(qFastest ? line % n2 : line / n1) - g;
     int idx[3];
     idx[axis] = 0;
     idx[b1] = p;

@@ -28,6 +28,7 @@ Solver::Solver(Params& root, const Domain& domain, const Vec3& gravity) : domain
     const auto st = static_cast<Staggering>(c + 1);
     u_[c] = Field(grid_, st);
     uOld_[c] = Field(grid_, st);
+    guessError_[c] = Field(grid_, st);
     conv_[c] = Field(grid_, st);
     convOld_[c] = Field(grid_, st);
     rhs_[c] = Field(grid_, st);
@@ -43,7 +44,7 @@ Solver::Solver(Params& root, const Domain& domain, const Vec3& gravity) : domain
   buildUnknownMasks();
   std::size_t maxSize = 0;
   for (int c = 0; c < 3; ++c) maxSize = std::max(maxSize, u_[c].data().size());
-  for (auto& v : krylov_) v.assign(maxSize, 0.0);  // r, rhat, p, v, s, t, 1/diag, u^n
+  for (auto& v : krylov_) v.assign(maxSize, 0.0);  // r, rhat, p, v, s, t, 1/diag
   poissonRhs_.assign(grid_.interiorCellCount(), 0.0);
   poissonX_.assign(grid_.interiorCellCount(), 0.0);
 
@@ -235,6 +236,7 @@ void Solver::setVelocity(const std::function<Vec3(const Vec3&)>& f) {
     }
     fillVelocityGhosts(u, c, bc_, GhostMode::Full);
     uOld_[c] = u;
+    std::fill(guessError_[c].data().begin(), guessError_[c].data().end(), 0.0);
   }
 }
 
@@ -433,7 +435,7 @@ void Solver::checkHealth(long long step, double time) const {
 }
 
 void Solver::save(BinaryWriter& out) const {
-  out.putString("fluid-v1");
+  out.putString("fluid-v2");
   out.put(grid_.cells);
   out.put(time_);
   out.put(dtPrev_);
@@ -443,6 +445,7 @@ void Solver::save(BinaryWriter& out) const {
   for (int c = 0; c < 3; ++c) {
     out.putVector(u_[c].data());
     out.putVector(uOld_[c].data());
+    out.putVector(guessError_[c].data());
     out.putVector(convOld_[c].data());
     out.putVector(coupling_.forceDensity[c].data());
     out.putVector(coupling_.particleVelocity[c].data());
@@ -457,7 +460,7 @@ void Solver::save(BinaryWriter& out) const {
 }
 
 void Solver::load(BinaryReader& in) {
-  if (in.getString() != "fluid-v1") throw CheckpointError("fluid checkpoint: unknown section tag");
+  if (in.getString() != "fluid-v2") throw CheckpointError("fluid checkpoint: unknown section tag");
   if (in.get<std::array<int, 3>>() != grid_.cells)
     throw CheckpointError("fluid checkpoint: grid size differs from the case file");
   time_ = in.get<double>();
@@ -474,6 +477,7 @@ void Solver::load(BinaryReader& in) {
   for (int c = 0; c < 3; ++c) {
     readInto(u_[c]);
     readInto(uOld_[c]);
+    readInto(guessError_[c]);
     readInto(convOld_[c]);
     readInto(coupling_.forceDensity[c]);
     readInto(coupling_.particleVelocity[c]);

@@ -156,13 +156,14 @@ class Solver {
 
   CouplingFields coupling_;
   Field u_[3], uOld_[3];        // u^n (after step: u^{n+1}) and u^{n-1}
+  Field guessError_[3];         // predicted velocity minus its initial guess in the last step (momentum.cpp)
   Field conv_[3], convOld_[3];  // convective term N^n, N^{n-1}
   Field rhs_[3];
   Field p_, phi_, epsOlder_, scalar_;
   std::vector<std::uint8_t> blocked_;     // per cell-field point
   std::vector<std::uint8_t> unknown_[3];  // per face point: solved by the momentum equation
   std::vector<std::int64_t> unknownList_[3];
-  std::vector<double> krylov_[8];  // r, rhat, p, v, s, t, 1/diag, u^n
+  std::vector<double> krylov_[7];  // r, rhat, p, v, s, t, 1/diag
   Field precY_[3], precZ_[3];
   std::vector<double> linePartial_;  // per-line partial sums (deterministic reductions)
   MultigridPoisson poisson_;
