@@ -187,6 +187,72 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode) {
   }
 }
 
+void fillVelocityStencilGhosts(Field& u, int c, const Boundaries& bc) {
+  const CartesianGrid& grid = u.grid();
+  const auto& pts = u.points();
+  double* d = u.data().data();
+  for (int a = 0; a < 3; ++a) {
+    const int n = grid.cells[a];
+    const bool periodic = bc.periodic(a);
+    if (!periodic && c == a) continue;  // boundary faces: kept by the sweeps
+    // The two other axes, lower one innermost (contiguous rows for the y and z faces).
+    const int lo = a == 0 ? 1 : 0, hi = a == 2 ? 1 : 2;
+    const std::ptrdiff_t st = u.stride(a), sLo = u.stride(lo), sHi = u.stride(hi);
+    const std::size_t origin = u.index(0, 0, 0);
+    const int nLo = pts[lo], nHi = pts[hi];
+    // Value of the first ghost from the boundary row (at0) and the next one (at1): tangential
+    // components (c != a) as in fillVelocityGhosts; periodic axes copy from the other end.
+    auto forRows = [&](auto&& body) {
+      auto row = [&](std::int64_t q) {
+        const std::size_t base = origin + static_cast<std::size_t>(q) * sHi;
+        for (int p = 0; p < nLo; ++p) body(base + static_cast<std::size_t>(p) * sLo);
+      };
+      if (serialLoops() || static_cast<std::int64_t>(nLo) * nHi < kSerialElementsBelow / 8) {
+        for (int q = 0; q < nHi; ++q) row(q);
+      } else {
+#pragma omp parallel for schedule(static)
+        for (int q = 0; q < nHi; ++q) row(q);
+      }
+    };
+    if (periodic) {
+      if (c == a) {
+        forRows([&](std::size_t b) {
+          d[b + n * st] = d[b];
+          d[b - st] = d[b + (n - 1) * st];
+        });
+      } else {
+        forRows([&](std::size_t b) {
+          d[b - st] = d[b + (n - 1) * st];
+          d[b + n * st] = d[b];
+        });
+      }
+      continue;
+    }
+    for (int s = 0; s < 2; ++s) {
+      const BoundarySide& side = bc.at(a, s);
+      // at(k) = d[b + first + k * inward]: k = 0 is the row next to the boundary.
+      const std::ptrdiff_t first = s == 0 ? 0 : (n - 1) * st, inward = s == 0 ? st : -st;
+      switch (side.type) {
+        case BoundaryType::Wall:
+        case BoundaryType::Inlet: {
+          const double uw = side.velocity[c] * rampFactor(side, bc.time);
+          if (n >= 2)
+            forRows([&](std::size_t b) {
+              const std::size_t r0 = b + first;
+              d[r0 - inward] = (8.0 * uw - 6.0 * d[r0] + d[r0 + inward]) / 3.0;
+            });
+          else
+            forRows([&](std::size_t b) { d[b + first - inward] = 2.0 * uw - d[b + first]; });
+          break;
+        }
+        default:  // slip and outlets: zero gradient
+          forRows([&](std::size_t b) { d[b + first - inward] = d[b + first]; });
+          break;
+      }
+    }
+  }
+}
+
 void fillCellGhosts(Field& f, const Boundaries& bc, CellGhostKind kind) {
   const CartesianGrid& grid = f.grid();
   const int g = grid.ghosts;

@@ -414,11 +414,14 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
       omega = it == 1 ? 1.0 : (it == 2 ? 2.0 / (2.0 - rho2) : 1.0 / (1.0 - 0.25 * rho2 * omega));
       rnorm = std::sqrt(jacobiSweepUniform(x, y, B, invDiag, mask, mu_, rho_ * g0 / dt, dims, omega, linePartial_));
       x.data().swap(y.data());
-      fillVelocityGhosts(x, c, bc_, GhostMode::Full);
+      fillVelocityStencilGhosts(x, c, bc_);  // only what the next sweep reads (full fill below)
     }
     X = x.data().data();
     Y = y.data().data();
-    if (rnorm > tol) rnorm = initialiseKrylov();  // stalled: BiCGStab from the current iterate
+    if (rnorm > tol) {  // stalled: BiCGStab from the current iterate
+      fillVelocityGhosts(x, c, bc_, GhostMode::Full);
+      rnorm = initialiseKrylov();
+    }
   } else if (offRatio < 0.6) {
     const int maxSweeps = 40;
     while (rnorm > tol && it < maxSweeps) {
