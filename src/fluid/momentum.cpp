@@ -17,9 +17,28 @@ namespace {
 /// Where eps varies (UNIFORM = false) the explicit rest of the viscous stress of seed 000
 /// eq. 5.6, div(eps mu [(grad u)^T - 2/3 (div u) I]), is subtracted from N as well (it vanishes
 /// for constant eps and a divergence-free field, so the eps = 1 path skips it).
+/// div u per cell on the cells -1..n of every axis (one ghost layer: the periodic faces read it).
+void cellDivergence(const Field u[3], Field& out, int dims) {
+  const CartesianGrid& g = out.grid();
+  const int ex = g.cells[0] + 2, ey = g.cells[1] + 2, ez = g.cells[2] + 2;
+  double* D = out.data().data();
+  parallelFor(static_cast<std::int64_t>(ey) * ez, [&](std::int64_t line) {
+    const int j = static_cast<int>(line % ey) - 1, k = static_cast<int>(line / ey) - 1;
+    const std::size_t d0 = out.index(-1, j, k);
+    for (int i = -1; i < ex - 1; ++i) {
+      double dv = 0.0;
+      for (int a = 0; a < dims; ++a) {
+        const std::size_t fa = u[a].index(i, j, k);
+        dv += (u[a].data()[fa + u[a].stride(a)] - u[a].data()[fa]) / g.spacing[a];
+      }
+      D[d0 + static_cast<std::size_t>(i + 1)] = dv;
+    }
+  });
+}
+
 template <bool TVD, bool UNIFORM>
 void convectionKernel(const Field u[3], const Field& eps, const std::vector<std::uint8_t>& mask, Field& out, int c,
-                      double rho, double mu, int dims) {
+                      double rho, double mu, int dims, const Field& divergenceField) {
   const Field& uc = u[c];
   const CartesianGrid& g = uc.grid();
   const auto& pts = uc.points();
@@ -71,18 +90,10 @@ void convectionKernel(const Field u[3], const Field& eps, const std::vector<std:
       if constexpr (!UNIFORM) {
         // Explicit stress rest for component c:
         //   d/dx_c(eps du_c/dx_c) - 2/3 d/dx_c(eps div u) + sum_{d != c} d/dx_d(eps du_d/dx_c)
-        auto divergence = [&](int ci, int cj, int ck) {
-          double dv = 0.0;
-          for (int a = 0; a < dims; ++a) {
-            const std::size_t fa = u[a].index(ci, cj, ck);
-            dv += (u[a].data()[fa + u[a].stride(a)] - u[a].data()[fa]) / g.spacing[a];
-          }
-          return dv;
-        };
-        int m[3] = {i, j, k};
-        m[c] -= 1;
+        // div u of the cells on both sides (cellDivergence: same arithmetic as in place).
+        const double* Dv = divergenceField.data().data();
         const double hc = g.spacing[c];
-        const double divP = divergence(i, j, k), divM = divergence(m[0], m[1], m[2]);
+        const double divP = Dv[cc], divM = Dv[cm];
         const double dP = (U[f + su[c]] - U[f]) / hc, dM = (U[f] - U[f - su[c]]) / hc;
         double T = (E[cc] * (dP - 2.0 / 3.0 * divP) - E[cm] * (dM - 2.0 / 3.0 * divM)) / hc;
         for (int d = 0; d < dims; ++d) {
@@ -225,18 +236,22 @@ double jacobiSweepUniform(const Field& x, Field& y, const double* B, const doubl
 
 }  // namespace
 
-void Solver::computeConvection(Field out[3]) const {
+void Solver::computeConvection(Field out[3]) {
   const int dims = twoD_ ? 2 : 3;
+  if (!uniformCoupling_) {
+    if (cellDivergence_.data().size() != p_.data().size()) cellDivergence_ = Field(grid_);
+    cellDivergence(u_, cellDivergence_, dims);
+  }
   for (int c = 0; c < dims; ++c) {
     const bool tvd = scheme_ == ConvectionScheme::VanLeer;
     if (tvd && uniformCoupling_)
-      convectionKernel<true, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims);
+      convectionKernel<true, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims, cellDivergence_);
     else if (tvd)
-      convectionKernel<true, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims);
+      convectionKernel<true, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims, cellDivergence_);
     else if (uniformCoupling_)
-      convectionKernel<false, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims);
+      convectionKernel<false, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims, cellDivergence_);
     else
-      convectionKernel<false, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims);
+      convectionKernel<false, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims, cellDivergence_);
   }
 }
 

@@ -102,7 +102,7 @@ class Solver {
   void buildUnknownMasks();
   void fillAllGhosts();
   // momentum.cpp
-  void computeConvection(Field out[3]) const;
+  void computeConvection(Field out[3]);
   void assembleMomentum(int c, double dt, double gamma0, double gamma1, double gamma2, double ext1, double ext2);
   /// predictor: start from 2 u^n - u^{n-1} and move u^n to uOld_; else (corrector) start from u.
   int solveHelmholtz(int c, double dt, double gamma0, bool predictor = true);
@@ -160,6 +160,7 @@ class Solver {
   Field conv_[3], convOld_[3];  // convective term N^n, N^{n-1}
   Field rhs_[3];
   Field p_, phi_, epsOlder_, scalar_;
+  Field cellDivergence_;  // div u per cell for the eps-varying viscous stress (momentum.cpp)
   std::vector<std::uint8_t> blocked_;     // per cell-field point
   std::vector<std::uint8_t> unknown_[3];  // per face point: solved by the momentum equation
   std::vector<std::int64_t> unknownList_[3];
