@@ -160,10 +160,15 @@ void Solver::project(double dt, double g0) {
       if (a >= dims) continue;
       const double areaOverH = grid_.cellVolume() / (grid_.spacing[a] * grid_.spacing[a]);
       for (int s = 0; s < 2; ++s) dirichlet[2 * a + s] = bc_.at(a, s).type == BoundaryType::PressureOutlet;
+      const Field& u = u_[a];
+      const int n = grid_.cells[a];
       parallelFor(static_cast<std::int64_t>(fn[1]) * fn[2], [&](std::int64_t line) {
         const int j = static_cast<int>(line % fn[1]), k = static_cast<int>(line / fn[1]);
+        const std::uint8_t* M = unknown_[a].data() + u.index(0, j, k);
         for (int i = 0; i < fn[0]; ++i) {
-          if (!coupled(a, i, j, k)) continue;
+          // coupled(): a momentum unknown, or a boundary face (periodic duplicate, pressure outlet).
+          const int along = a == 0 ? i : (a == 1 ? j : k);
+          if (!M[i] && !((along == 0 || along == n) && coupled(a, i, j, k))) continue;
           const std::size_t cc = p_.index(i, j, k);
           const double epsF = avg(E, cc, p_.stride(a));
           T[a][static_cast<std::size_t>(i) + fn[0] * static_cast<std::size_t>(line)] =
