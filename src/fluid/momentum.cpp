@@ -182,11 +182,30 @@ void helmholtzKernel(const Field& x, std::vector<double>& y, const std::vector<s
   });
 }
 
+/// Jacobi diagonal of the eps = 1, K = 0 operator, in the arithmetic order of the stored diagonal
+/// of solveHelmholtz (generic helmholtzKernel, then the no-slip closure rows): base, then 2 w_d
+/// for each tangential direction d whose min / max side is a wall or inlet, on the row next to it.
+struct UniformJacobiDiagonal {
+  double base = 0.0;
+  double add[3] = {0.0, 0.0, 0.0};
+  bool lo[3] = {false, false, false}, hi[3] = {false, false, false};
+  int n[3] = {1, 1, 1};
+  double value(int i, int j, int k) const {
+    const int idx[3] = {i, j, k};
+    double v = base;
+    for (int d = 0; d < 3; ++d) {
+      if (lo[d] && idx[d] == 0) v += add[d];
+      if (hi[d] && idx[d] == n[d] - 1) v += add[d];
+    }
+    return v;
+  }
+};
+
 /// One Chebyshev-accelerated Jacobi sweep for eps = 1, K = 0 fused with the residual:
 ///   y <- y + omega (x + D^-1 (b - A x) - y)   at the unknown faces (y = x elsewhere),
 /// where y holds the previous iterate x_{k-1} on entry (omega = 1: plain Jacobi). Returns
 /// |b - A x|^2 summed line by line in line order (deterministic). x must have its ghosts filled.
-double jacobiSweepUniform(const Field& x, Field& y, const double* B, const double* invD,
+double jacobiSweepUniform(const Field& x, Field& y, const double* B, const UniformJacobiDiagonal& jd,
                           const std::vector<std::uint8_t>& mask, double mu, double timeCoeff, int dims,
                           double omega, std::vector<double>& linePartial) {
   const CartesianGrid& g = x.grid();
@@ -207,15 +226,19 @@ double jacobiSweepUniform(const Field& x, Field& y, const double* B, const doubl
     const double* Xl = X + f0;
     double* Yl = Y + f0;
     const double* Bl = B + f0;
-    const double* Dl = invD + f0;
     const std::uint8_t* Ml = mask.data() + f0;
+    // 1 / Jacobi diagonal: one value inside the line, others at its two ends (no array read).
+    const int last = pts[0] - 1;
+    const double inv0 = 1.0 / jd.value(0, j, k), invLast = 1.0 / jd.value(last, j, k);
+    const double invMid = pts[0] > 2 ? 1.0 / jd.value(1, j, k) : inv0;
     double acc0 = 0.0, acc1 = 0.0;
     int i = 0;
     auto body = [&](int q, double& acc) {
       const double ax = diag * Xl[q] - w[0] * (Xl[q + 1] + Xl[q - 1]) - w[1] * (Xl[q + sy] + Xl[q - sy]) -
                         wz * (Xl[q + sz] + Xl[q - sz]);
       const double r = Ml[q] ? Bl[q] - ax : 0.0;
-      const double jacobi = Xl[q] + r * Dl[q];
+      const double invD = q == 0 ? inv0 : (q == last ? invLast : invMid);
+      const double jacobi = Xl[q] + r * invD;
       // omega = 1 (first sweep): y's old content must not enter even by rounding (restart ==
       // continuous run, bit for bit).
       const double next = plainJacobi ? jacobi : Yl[q] + omega * (jacobi - Yl[q]);
@@ -277,6 +300,26 @@ void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2,
   const double gc = gravity_[c];
   const double drive = (driveMode_ != DrivingMode::None && driveAxis_ == c) ? drive_ : 0.0;
   const bool modelA = model_ == MomentumModel::A;
+  if (uniformCoupling_) {
+    // eps = eps_old = eps_older = 1 and K = 0 (ghosts included): the general expression below with
+    // those values (same arithmetic; the drag term K u_p is an exact zero), without reading them.
+    parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
+      const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
+      const std::size_t f0 = uc.index(0, j, k), e0 = p_.index(0, j, k);
+      for (int i = 0; i < pts[0]; ++i) {
+        const std::size_t f = f0 + i;
+        if (!mask[f]) continue;
+        const std::size_t cc = e0 + i, cm = cc - se;
+        double r = rdt * (g1 * U[f] - g2 * Uo[f]);
+        r -= e1 * N[f] - e2 * No[f];
+        r -= (P[cc] - P[cm]) * invH;
+        r += rho_ * gc + drive;
+        r += 0.5 * (F[cc] + F[cm]) + 0.0;
+        R[f] = r;
+      }
+    });
+    return;
+  }
   parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
     const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
     const std::size_t f0 = uc.index(0, j, k), e0 = p_.index(0, j, k);
@@ -338,36 +381,56 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
     return parallelSumElements(n, [&](std::int64_t q) { return a[q] * b[q]; });
   };
   const int dims = twoD_ ? 2 : 3;
-  if (uniformCoupling_)
-    helmholtzKernel<true>(x, krylov_[6], mask, coupling_.voidFraction, coupling_.dragCoefficient, c, mu_,
-                          rho_ * g0 / dt, dims, true);
-  else
-    helmholtzKernel<false>(x, krylov_[6], mask, coupling_.voidFraction, coupling_.dragCoefficient, c, mu_,
-                           rho_ * g0 / dt, dims, true);
-  // The quadratic no-slip closure u_g = (8 u_w - 6 u_0 + u_1)/3 adds 2 w eps to the diagonal
-  // of the rows next to walls and inlets (tangential directions): exact Jacobi diagonal.
-  for (int d = 0; d < dims; ++d) {
-    if (d == c) continue;
-    const double wd = mu_ / (grid_.spacing[d] * grid_.spacing[d]);
-    const auto& pts = x.points();
-    for (int side = 0; side < 2; ++side) {
-      const BoundaryType type = bc_.at(d, side).type;
-      if (type != BoundaryType::Wall && type != BoundaryType::Inlet) continue;
-      const int row = side == 0 ? 0 : grid_.cells[d] - 1;
-      const int b1 = (d + 1) % 3, b2 = (d + 2) % 3;
-      for (int q = 0; q < pts[b2]; ++q)
-        for (int pp = 0; pp < pts[b1]; ++pp) {
-          int idx[3];
-          idx[d] = row;
-          idx[b1] = pp;
-          idx[b2] = q;
-          const std::size_t f = x.index(idx[0], idx[1], idx[2]);
-          if (!mask[f]) continue;
-          const std::size_t cc = coupling_.voidFraction.index(idx[0], idx[1], idx[2]);
-          const double* E = coupling_.voidFraction.data().data();
-          const double epsF = uniformCoupling_ ? 1.0 : 0.5 * (E[cc] + E[cc - coupling_.voidFraction.stride(c)]);
-          invDiag[f] += 2.0 * wd * epsF;
-        }
+  // Jacobi diagonal (inverted) for the Jacobi and BiCGStab paths; the Chebyshev sweeps compute it
+  // on the fly (UniformJacobiDiagonal) and build the array only if they stall.
+  auto buildInverseDiagonal = [&]() {
+    if (uniformCoupling_)
+      helmholtzKernel<true>(x, krylov_[6], mask, coupling_.voidFraction, coupling_.dragCoefficient, c, mu_,
+                            rho_ * g0 / dt, dims, true);
+    else
+      helmholtzKernel<false>(x, krylov_[6], mask, coupling_.voidFraction, coupling_.dragCoefficient, c, mu_,
+                             rho_ * g0 / dt, dims, true);
+    // The quadratic no-slip closure u_g = (8 u_w - 6 u_0 + u_1)/3 adds 2 w eps to the diagonal
+    // of the rows next to walls and inlets (tangential directions): exact Jacobi diagonal.
+    for (int d = 0; d < dims; ++d) {
+      if (d == c) continue;
+      const double wd = mu_ / (grid_.spacing[d] * grid_.spacing[d]);
+      const auto& pts = x.points();
+      for (int side = 0; side < 2; ++side) {
+        const BoundaryType type = bc_.at(d, side).type;
+        if (type != BoundaryType::Wall && type != BoundaryType::Inlet) continue;
+        const int row = side == 0 ? 0 : grid_.cells[d] - 1;
+        const int b1 = (d + 1) % 3, b2 = (d + 2) % 3;
+        for (int q = 0; q < pts[b2]; ++q)
+          for (int pp = 0; pp < pts[b1]; ++pp) {
+            int idx[3];
+            idx[d] = row;
+            idx[b1] = pp;
+            idx[b2] = q;
+            const std::size_t f = x.index(idx[0], idx[1], idx[2]);
+            if (!mask[f]) continue;
+            const std::size_t cc = coupling_.voidFraction.index(idx[0], idx[1], idx[2]);
+            const double* E = coupling_.voidFraction.data().data();
+            const double epsF = uniformCoupling_ ? 1.0 : 0.5 * (E[cc] + E[cc - coupling_.voidFraction.stride(c)]);
+            invDiag[f] += 2.0 * wd * epsF;
+          }
+      }
+    }
+    parallelForElements(n, [&](std::int64_t q) { invDiag[q] = mask[q] ? 1.0 / invDiag[q] : 0.0; });
+  };
+  UniformJacobiDiagonal jacobiDiagonal;
+  {
+    jacobiDiagonal.base = rho_ * g0 / dt;
+    for (int d = 0; d < dims; ++d) {
+      const double wd = mu_ / (grid_.spacing[d] * grid_.spacing[d]);
+      jacobiDiagonal.base += wd * (1.0 + 1.0);  // helmholtzKernel: diag += w_d (eps_+ + eps_-)
+      jacobiDiagonal.n[d] = grid_.cells[d];
+      if (d == c) continue;
+      jacobiDiagonal.add[d] = 2.0 * wd * 1.0;
+      for (int side = 0; side < 2; ++side) {
+        const BoundaryType type = bc_.at(d, side).type;
+        (side == 0 ? jacobiDiagonal.lo : jacobiDiagonal.hi)[d] = type == BoundaryType::Wall || type == BoundaryType::Inlet;
+      }
     }
   }
   // Initial guess: u^n extrapolated in time, 2 u^n - u^{n-1} (second order), plus the error of
@@ -378,9 +441,7 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
   double* Uo = uOld_[c].data().data();
   double* G = guessError_[c].data().data();
   // (Corrector solves start from the current velocity and leave u^{n-1} alone.)
-  parallelForElements(n, [&](std::int64_t q) {
-    invDiag[q] = mask[q] ? 1.0 / invDiag[q] : 0.0;
-    if (!predictor) return;
+  if (predictor) parallelForElements(n, [&](std::int64_t q) {
     const double un = X[q];
     if (mask[q]) {
       const double extrapolated = 2.0 * un - Uo[q];
@@ -399,6 +460,7 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
   for (int d = 0; d < dims; ++d) offRatio += 2.0 * mu_ / (grid_.spacing[d] * grid_.spacing[d]);
   offRatio /= rho_ * g0 / dt + offRatio;
   const bool chebyshev = offRatio < 0.6 && uniformCoupling_;
+  if (!chebyshev) buildInverseDiagonal();
   // Residual and BiCGStab vectors (the Chebyshev sweeps compute their own residual).
   auto initialiseKrylov = [&]() {
     applyHelmholtz(c, x, krylov_[5], dt, g0);
@@ -427,13 +489,14 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
     while (rnorm > tol && it < maxSweeps) {
       ++it;
       omega = it == 1 ? 1.0 : (it == 2 ? 2.0 / (2.0 - rho2) : 1.0 / (1.0 - 0.25 * rho2 * omega));
-      rnorm = std::sqrt(jacobiSweepUniform(x, y, B, invDiag, mask, mu_, rho_ * g0 / dt, dims, omega, linePartial_));
+      rnorm = std::sqrt(jacobiSweepUniform(x, y, B, jacobiDiagonal, mask, mu_, rho_ * g0 / dt, dims, omega, linePartial_));
       x.data().swap(y.data());
       fillVelocityStencilGhosts(x, c, bc_);  // only what the next sweep reads (full fill below)
     }
     X = x.data().data();
     Y = y.data().data();
     if (rnorm > tol) {  // stalled: BiCGStab from the current iterate
+      buildInverseDiagonal();
       fillVelocityGhosts(x, c, bc_, GhostMode::Full);
       rnorm = initialiseKrylov();
     }
