@@ -213,6 +213,27 @@ void MultigridPoisson::solveCoarsest(PoissonLevel& L) const {
 }
 
 void MultigridPoisson::buildDiagonal(PoissonLevel& L, const std::array<bool, 6>& dirichlet) const {
+  // Constant coefficients? (faces between two cells, wrap-around faces of periodic axes included)
+  L.constantT = true;
+  for (int a = 0; a < 3 && L.constantT; ++a) {
+    L.tConstant[a] = 0.0;
+    if (L.n[a] == 1) continue;  // no coupling along a
+    bool first = true;
+    for (int k = 0; k < L.n[2] + (a == 2) && L.constantT; ++k)
+      for (int j = 0; j < L.n[1] + (a == 1); ++j)
+        for (int i = 0; i < L.n[0] + (a == 0); ++i) {
+          const int idx[3] = {i, j, k};
+          if (!L.periodic[a] && (idx[a] == 0 || idx[a] == L.n[a])) continue;  // boundary faces
+          const double t = L.T[a][L.faceIndex(a, i, j, k)];
+          if (first) {
+            L.tConstant[a] = t;
+            first = false;
+          } else if (t != L.tConstant[a]) {
+            L.constantT = false;
+            break;
+          }
+        }
+  }
   L.invDiag.assign(L.cells(), 0.0);
   L.diag.assign(L.cells(), 0.0);
   L.redBlackSafe = true;
@@ -314,20 +335,54 @@ LineStencil lineStencil(const PoissonLevel& L, int j, int k, const double* zeros
 
 namespace {
 /// y = A x on grid line (j, k) of level L (x: the whole level, y: the line).
-inline void applyLine(const PoissonLevel& L, const double* xv, double* y, int j, int k, const double* zeros) {
+/// Coefficients of one grid line: the level's arrays, or (CONSTANT) the level's constant per axis
+/// (0 for a missing neighbour line): the same values, so the same results, without the reads.
+template <bool CONSTANT>
+struct LineCoefficients {
+  const double* tS;
+  const double* tN;
+  const double* tB;
+  const double* tT;
+  const double* tx;
+  double cS = 0.0, cN = 0.0, cB = 0.0, cT = 0.0, cx = 0.0;
+  LineCoefficients(const PoissonLevel& L, const LineStencil& st, int j, int k, const double* zeros)
+      : tS(st.tS), tN(st.tN), tB(st.tB), tT(st.tT), tx(L.T[0].data() + L.faceIndex(0, 0, j, k)) {
+    if constexpr (CONSTANT) {
+      cS = st.tS == zeros ? 0.0 : L.tConstant[1];
+      cN = st.tN == zeros ? 0.0 : L.tConstant[1];
+      cB = st.tB == zeros ? 0.0 : L.tConstant[2];
+      cT = st.tT == zeros ? 0.0 : L.tConstant[2];
+      cx = L.tConstant[0];
+    }
+  }
+  double S(int i) const { return CONSTANT ? cS : tS[i]; }
+  double N(int i) const { return CONSTANT ? cN : tN[i]; }
+  double B(int i) const { return CONSTANT ? cB : tB[i]; }
+  double T(int i) const { return CONSTANT ? cT : tT[i]; }
+  /// x face i of the line (between cells i-1 and i); only read where it couples two cells.
+  double X(int i) const { return CONSTANT ? cx : tx[i]; }
+};
+
+template <bool CONSTANT>
+inline void applyLineImpl(const PoissonLevel& L, const double* xv, double* y, int j, int k, const double* zeros) {
   const int nx = L.n[0], ny = L.n[1];
   const std::size_t base = static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * k);
   const double* x = xv + base;
   const double* diag = L.diag.data() + base;
-  const double* Tx = L.T[0].data() + L.faceIndex(0, 0, j, k);
   const LineStencil st = lineStencil(L, j, k, zeros);
+  const LineCoefficients<CONSTANT> t(L, st, j, k, zeros);
   const bool perX = L.periodic[0] && nx > 1;
   for (int i = 0; i < nx; ++i) {
-    const double off = st.tS[i] * x[i + st.oS] + st.tN[i] * x[i + st.oN] + st.tB[i] * x[i + st.oB] +
-                       st.tT[i] * x[i + st.oT] + (i > 0 ? Tx[i] * x[i - 1] : (perX ? Tx[i] * x[nx - 1] : 0.0)) +
-                       (i < nx - 1 ? Tx[i + 1] * x[i + 1] : (perX ? Tx[i + 1] * x[0] : 0.0));
+    const double off = t.S(i) * x[i + st.oS] + t.N(i) * x[i + st.oN] + t.B(i) * x[i + st.oB] +
+                       t.T(i) * x[i + st.oT] + (i > 0 ? t.X(i) * x[i - 1] : (perX ? t.X(i) * x[nx - 1] : 0.0)) +
+                       (i < nx - 1 ? t.X(i + 1) * x[i + 1] : (perX ? t.X(i + 1) * x[0] : 0.0));
     y[i] = diag[i] * x[i] - off;
   }
+}
+
+inline void applyLine(const PoissonLevel& L, const double* xv, double* y, int j, int k, const double* zeros) {
+  if (L.constantT) applyLineImpl<true>(L, xv, y, j, k, zeros);
+  else applyLineImpl<false>(L, xv, y, j, k, zeros);
 }
 }  // namespace
 
@@ -357,25 +412,26 @@ double MultigridPoisson::applyLevelDot(const PoissonLevel& L, const std::vector<
   return sum;
 }
 
-// Relaxes the cells with (i+j+k) % 2 == colour on grid line (j, k).
-void MultigridPoisson::relaxLine(PoissonLevel& L, int j, int k, int colour) const {
+namespace {
+template <bool CONSTANT>
+void relaxLineImpl(PoissonLevel& L, int j, int k, int colour, const double* zeros) {
   const int nx = L.n[0], ny = L.n[1];
   const std::size_t base = static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * k);
   double* x = L.x.data() + base;
   const double* b = L.b.data() + base;
   const double* inv = L.invDiag.data() + base;
-  const double* Tx = L.T[0].data() + L.faceIndex(0, 0, j, k);
-  const LineStencil st = lineStencil(L, j, k, zeros_.data());
+  const LineStencil st = lineStencil(L, j, k, zeros);
+  const LineCoefficients<CONSTANT> t(L, st, j, k, zeros);
   const bool perX = L.periodic[0] && nx > 1;
   auto yz = [&](int i) {
-    return st.tS[i] * x[i + st.oS] + st.tN[i] * x[i + st.oN] + st.tB[i] * x[i + st.oB] + st.tT[i] * x[i + st.oT];
+    return t.S(i) * x[i + st.oS] + t.N(i) * x[i + st.oN] + t.B(i) * x[i + st.oB] + t.T(i) * x[i + st.oT];
   };
   auto relaxEdge = [&](int i) {
     double s = b[i] + yz(i);
-    if (i > 0) s += Tx[i] * x[i - 1];
-    else if (perX) s += Tx[i] * x[nx - 1];
-    if (i < nx - 1) s += Tx[i + 1] * x[i + 1];
-    else if (perX) s += Tx[i + 1] * x[0];
+    if (i > 0) s += t.X(i) * x[i - 1];
+    else if (perX) s += t.X(i) * x[nx - 1];
+    if (i < nx - 1) s += t.X(i + 1) * x[i + 1];
+    else if (perX) s += t.X(i + 1) * x[0];
     x[i] = s * inv[i];
   };
   int i = (j + k + colour) & 1;
@@ -383,8 +439,15 @@ void MultigridPoisson::relaxLine(PoissonLevel& L, int j, int k, int colour) cons
     relaxEdge(0);
     i = 2;
   }
-  for (; i < nx - 1; i += 2) x[i] = (b[i] + yz(i) + Tx[i] * x[i - 1] + Tx[i + 1] * x[i + 1]) * inv[i];
+  for (; i < nx - 1; i += 2) x[i] = (b[i] + yz(i) + t.X(i) * x[i - 1] + t.X(i + 1) * x[i + 1]) * inv[i];
   if (i == nx - 1) relaxEdge(i);
+}
+}  // namespace
+
+// Relaxes the cells with (i+j+k) % 2 == colour on grid line (j, k).
+void MultigridPoisson::relaxLine(PoissonLevel& L, int j, int k, int colour) const {
+  if (L.constantT) relaxLineImpl<true>(L, j, k, colour, zeros_.data());
+  else relaxLineImpl<false>(L, j, k, colour, zeros_.data());
 }
 
 // One half-sweep of red-black Gauss-Seidel over the cells with (i+j+k) % 2 == colour.

@@ -28,6 +28,10 @@ struct PoissonLevel {
   std::vector<double> diag;              // diagonal
   std::vector<double> x, b;              // solution, right-hand side
   bool redBlackSafe = true;              // colouring is a proper 2-colouring (no odd periodic axis)
+  /// Every face that couples two cells along axis a has T = tConstant[a] (uniform coefficients,
+  /// e.g. single-phase flow): the smoother and the operator then read no coefficient arrays.
+  bool constantT = false;
+  std::array<double, 3> tConstant{0.0, 0.0, 0.0};
 
   std::size_t cells() const { return static_cast<std::size_t>(n[0]) * n[1] * n[2]; }
   /// Index of face (i, j, k) normal to axis (axis -1: cell (i, j, k)).
