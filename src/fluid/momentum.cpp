@@ -2,6 +2,7 @@
 // viscous and drag terms solved with Jacobi-preconditioned BiCGStab per velocity component.
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "fluid/loops.hpp"
 #include "fluid/schemes.hpp"
@@ -36,9 +37,10 @@ void cellDivergence(const Field u[3], Field& out, int dims) {
   });
 }
 
-template <bool TVD, bool UNIFORM>
+template <bool TVD, bool UNIFORM, int DIMS>
 void convectionKernel(const Field u[3], const Field& eps, const std::vector<std::uint8_t>& mask, Field& out, int c,
-                      double rho, double mu, int dims, const Field& divergenceField) {
+                      double rho, double mu, const Field& divergenceField) {
+  constexpr int dims = DIMS;  // compile-time: the direction loops unroll
   const Field& uc = u[c];
   const CartesianGrid& g = uc.grid();
   const auto& pts = uc.points();
@@ -115,9 +117,10 @@ void convectionKernel(const Field u[3], const Field& eps, const std::vector<std:
 }
 
 /// y = (rho gamma0 eps_f / dt + K_f) x - div(mu eps grad x) at the unknown faces of component c.
-template <bool UNIFORM>
+template <bool UNIFORM, int DIMS>
 void helmholtzKernel(const Field& x, std::vector<double>& y, const std::vector<std::uint8_t>& mask, const Field& eps,
-                     const Field& K, int c, double mu, double timeCoeff, int dims, bool jacobiDiagonal) {
+                     const Field& K, int c, double mu, double timeCoeff, bool jacobiDiagonal) {
+  constexpr int dims = DIMS;  // compile-time: the direction loops unroll
   const CartesianGrid& g = x.grid();
   const auto& pts = x.points();
   const double* X = x.data().data();
@@ -180,6 +183,14 @@ void helmholtzKernel(const Field& x, std::vector<double>& y, const std::vector<s
       Y[f] = jacobiDiagonal ? diag : diag * X[f] - off;
     }
   });
+}
+
+/// helmholtzKernel for a run-time dimension count.
+template <bool UNIFORM>
+void helmholtzKernel(const Field& x, std::vector<double>& y, const std::vector<std::uint8_t>& mask, const Field& eps,
+                     const Field& K, int c, double mu, double timeCoeff, int dims, bool jacobiDiagonal) {
+  if (dims == 3) helmholtzKernel<UNIFORM, 3>(x, y, mask, eps, K, c, mu, timeCoeff, jacobiDiagonal);
+  else helmholtzKernel<UNIFORM, 2>(x, y, mask, eps, K, c, mu, timeCoeff, jacobiDiagonal);
 }
 
 /// Jacobi diagonal of the eps = 1, K = 0 operator, in the arithmetic order of the stored diagonal
@@ -265,17 +276,20 @@ void Solver::computeConvection(Field out[3]) {
     if (cellDivergence_.data().size() != p_.data().size()) cellDivergence_ = Field(grid_);
     cellDivergence(u_, cellDivergence_, dims);
   }
-  for (int c = 0; c < dims; ++c) {
-    const bool tvd = scheme_ == ConvectionScheme::VanLeer;
-    if (tvd && uniformCoupling_)
-      convectionKernel<true, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims, cellDivergence_);
-    else if (tvd)
-      convectionKernel<true, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims, cellDivergence_);
-    else if (uniformCoupling_)
-      convectionKernel<false, true>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims, cellDivergence_);
-    else
-      convectionKernel<false, false>(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, dims, cellDivergence_);
-  }
+  const bool tvd = scheme_ == ConvectionScheme::VanLeer;
+  auto run = [&](auto kernel) {
+    for (int c = 0; c < dims; ++c)
+      kernel(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, cellDivergence_);
+  };
+  auto byDims = [&](auto tvdC, auto uniformC) {
+    constexpr bool T = decltype(tvdC)::value, U = decltype(uniformC)::value;
+    if (dims == 3) run(convectionKernel<T, U, 3>);
+    else run(convectionKernel<T, U, 2>);
+  };
+  if (tvd && uniformCoupling_) byDims(std::true_type{}, std::true_type{});
+  else if (tvd) byDims(std::true_type{}, std::false_type{});
+  else if (uniformCoupling_) byDims(std::false_type{}, std::true_type{});
+  else byDims(std::false_type{}, std::false_type{});
 }
 
 void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2, double e1, double e2) {
