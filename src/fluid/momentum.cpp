@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <type_traits>
+#include <vector>
 
 #include "fluid/loops.hpp"
 #include "fluid/schemes.hpp"
@@ -57,6 +58,28 @@ void convectionKernel(const Field u[3], const Field& eps, const std::vector<std:
     const std::size_t f0 = uc.index(0, j, k), e0 = eps.index(0, j, k);
     std::size_t d0[3];
     for (int d = 0; d < 3; ++d) d0[d] = u[d].index(0, j, k);
+    // eps = 1: the x-direction flux F q through face i + 1/2 is point i's plus term and point
+    // i + 1's minus term (the same expression): computed once per face into a line buffer,
+    // xFlux[i + 1] for face i + 1/2 (i = -1 .. n-1).
+    thread_local std::vector<double> xFluxBuffer;
+    double* xFlux = nullptr;
+    if constexpr (UNIFORM) {
+      xFluxBuffer.resize(static_cast<std::size_t>(pts[0]) + 1);
+      xFlux = xFluxBuffer.data();
+      const double* V = u[0].data().data();
+      const std::ptrdiff_t vc = u[0].stride(c);
+      for (int i = -1; i < pts[0]; ++i) {
+        const std::size_t f = f0 + i;
+        double Fp;
+        if (c == 0) {
+          Fp = rho * 1.0 * 0.5 * (U[f] + U[f + 1]);
+        } else {
+          const std::size_t idc = d0[0] + i, idm = idc - vc;
+          Fp = rho * 1.0 * (0.5 * (V[idc + 1] + V[idm + 1]));
+        }
+        xFlux[i + 1] = Fp * faceValue<TVD>(Fp, U[f - 1], U[f], U[f + 1], U[f + 2]);
+      }
+    }
     for (int i = 0; i < pts[0]; ++i) {
       const std::size_t f = f0 + i;
       if (!mask[f]) {
@@ -66,6 +89,12 @@ void convectionKernel(const Field u[3], const Field& eps, const std::vector<std:
       const std::size_t cc = e0 + i, cm = cc - se[c];
       double N = 0.0;
       for (int d = 0; d < dims; ++d) {
+        if constexpr (UNIFORM) {
+          if (d == 0) {
+            N += (xFlux[i + 1] - xFlux[i]) / g.spacing[0];
+            continue;
+          }
+        }
         double Fp, Fm;
         if (d == c) {
           Fp = rho * (UNIFORM ? 1.0 : E[cc]) * 0.5 * (U[f] + U[f + su[c]]);
