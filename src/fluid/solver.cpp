@@ -1,9 +1,12 @@
 #include "fluid/solver.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -265,10 +268,26 @@ void Solver::step(double dt) {
   const auto& eps = coupling_.voidFraction.data();
   const auto& epsOld = coupling_.voidFractionOld.data();
   const auto& K = coupling_.dragCoefficient.data();
+  // eps = eps_old = 1 and K = 0 everywhere (ghosts included)? Scanned in fixed chunks, each
+  // stopping at its first non-uniform value (a boolean: the same answer for any thread count).
+  constexpr std::size_t kChunk = 16384;
+  const std::size_t chunks = (eps.size() + kChunk - 1) / kChunk;
+  std::vector<std::uint8_t> chunkUniform(chunks, 1);
+  parallelForAbove(static_cast<std::int64_t>(chunks), 8, [&](std::int64_t q) {
+    const std::size_t end = std::min(eps.size(), (static_cast<std::size_t>(q) + 1) * kChunk);
+    for (std::size_t i = static_cast<std::size_t>(q) * kChunk; i < end; ++i)
+      if (!(eps[i] == 1.0 && epsOld[i] == 1.0 && K[i] == 0.0)) {
+        chunkUniform[static_cast<std::size_t>(q)] = 0;
+        break;
+      }
+  });
   bool uniform = true;
-  for (std::size_t i = 0; i < eps.size() && uniform; ++i) uniform = eps[i] == 1.0 && epsOld[i] == 1.0 && K[i] == 0.0;
+  for (std::uint8_t u : chunkUniform) uniform = uniform && u != 0;
   uniformCoupling_ = uniform;
-  if (steps_ == 0) epsOlder_ = coupling_.voidFractionOld;
+  if (steps_ == 0) {
+    epsOlder_ = coupling_.voidFractionOld;
+    epsOlderOnes_ = uniform;
+  }
   // Variable-step BDF2 (BDF1 on the first step) and matching extrapolation of convection.
   double g0 = 1.0, g1 = 1.0, g2 = 0.0, e1 = 1.0, e2 = 0.0;
   if (steps_ > 0 && dtPrev_ > 0.0) {
@@ -302,7 +321,11 @@ void Solver::step(double dt) {
   }
   if (driveMode_ == DrivingMode::FlowRate) controlFlowRate(dt, g0);
   for (int c = 0; c < 3; ++c) convOld_[c].data().swap(conv_[c].data());
-  epsOlder_ = coupling_.voidFractionOld;
+  // eps_older <- eps_old (a copy of the whole field: skipped while both are 1 everywhere)
+  if (!(uniform && epsOlderOnes_)) {
+    epsOlder_ = coupling_.voidFractionOld;
+    epsOlderOnes_ = uniform;
+  }
   dtPrev_ = dt;
   lastDt_ = dt;
   time_ += dt;
@@ -484,6 +507,7 @@ void Solver::load(BinaryReader& in) {
   }
   readInto(p_);
   readInto(epsOlder_);
+  epsOlderOnes_ = false;
   readInto(scalar_);
   readInto(coupling_.voidFraction);
   readInto(coupling_.voidFractionOld);

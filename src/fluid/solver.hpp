@@ -170,6 +170,7 @@ class Solver {
   MultigridPoisson poisson_;
   double poissonKey_ = -1.0;  // rho gamma0 / dt of the current multigrid setup (-1: rebuild)
   bool uniformCoupling_ = true;
+  bool epsOlderOnes_ = true;  // epsOlder_ is 1 everywhere (ghosts included)
   std::vector<double> poissonRhs_, poissonX_, firstIncrement_;
 
   double time_ = 0.0, dtPrev_ = 0.0, lastDt_ = 0.0;
