@@ -86,6 +86,10 @@ Coupler::Coupler(Params& root, const CartesianGrid& grid, const std::array<bool,
     vorticity_[a] = Field(grid);
     divTau_[a] = Field(grid);
   }
+  // the cells stencils reach: interior rows (deposits zero and sum only these)
+  for (int k = 0; k < grid.cells[2]; ++k)
+    for (int j = 0; j < grid.cells[1]; ++j)
+      deposit_.runs.push_back({topology_.flat(0, j, k), static_cast<std::size_t>(grid.cells[0])});
   // ghost cell -> its source (periodic: wrapped image; wall: nearest interior cell, i.e. zero
   // normal gradient), listed once so that fillGhosts is one gather
   const auto& n = grid.cells;
