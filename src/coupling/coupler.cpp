@@ -144,8 +144,9 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
                  .data();
   }
   exchangeDeposited_ = fuse;
-  particleVolume_ = 0.0;
-  for (std::size_t p = 0; p < n; ++p) particleVolume_ += force::sphereVolume(2.0 * particles.radius[p]);
+  particleVolume_ = sumsOverIndices<1>(static_cast<std::int64_t>(n), [&](std::int64_t p, std::array<double, 1>& sum) {
+                      sum[0] += particleVolume(static_cast<std::size_t>(p));
+                    })[0];
   Field& solid = solidFraction_;
   const auto& c = topology_.grid.cells;
   const double cellVolume = topology_.grid.cellVolume();
@@ -483,13 +484,15 @@ void Coupler::smoothExchange(CouplingFields& fields, bool implicit) const {
 
 void Coupler::updateMomentumBalance(const CouplingFields& fields, bool implicit) {
   // Newton's third law: particles' exchanged forces + fluid sources (explicit - K (u - u_p)) = 0.
-  Vec3 onParticles{}, onFluid{};
-  exchangedForceScale_ = 0.0;
-  for (std::size_t p = 0; p < beta_.size(); ++p) {
-    const Vec3 f = force::drag(beta_[p], slip_[p]) + otherExchangedForce_[p];
-    onParticles += f;
-    exchangedForceScale_ += norm(f);
-  }
+  const std::array<double, 4> sums =
+      sumsOverIndices<4>(static_cast<std::int64_t>(beta_.size()), [&](std::int64_t p, std::array<double, 4>& sum) {
+        const Vec3 f = force::drag(beta_[p], slip_[p]) + otherExchangedForce_[p];
+        sum[0] += f.x, sum[1] += f.y, sum[2] += f.z;
+        sum[3] += norm(f);
+      });
+  const Vec3 onParticles{sums[0], sums[1], sums[2]};
+  Vec3 onFluid{};
+  exchangedForceScale_ = sums[3];
   const auto& c = topology_.grid.cells;
   const double cellVolume = topology_.grid.cellVolume();
   const Field* const* u = lastFluid_.velocity;
