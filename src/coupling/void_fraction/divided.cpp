@@ -145,9 +145,10 @@ class DividedVoidFraction final : public VoidFractionScheme {
             count[b & ~(1 << a)] += count[b];
             count[b] = 0;
           }
+    // the non-empty cells in block order; branch-free (which cells are empty is hard to predict),
+    // the stencil has capacity 8
     for (int b = 0; b < 8; ++b)
-      if (count[b] > 0)
-        w.append(offset[0][b & 1] + offset[1][(b >> 1) & 1] + offset[2][(b >> 2) & 1] + shift,
+      w.appendIf(count[b] > 0, offset[0][b & 1] + offset[1][(b >> 1) & 1] + offset[2][(b >> 2) & 1] + shift,
                  count[b] * (1.0 / kPoints));
   }
 };
