@@ -120,14 +120,12 @@ class DividedVoidFraction final : public VoidFractionScheme {
     int split[3];
     for (int a = 0; a < 3; ++a) {
       const double o = t.grid.origin[a], inv = t.inverseSpacing[a], xa = x[a];
-      double scaled[kValues];
-#pragma omp simd
-      for (int v = 0; v < kValues; ++v) scaled[v] = (xa + r * unit.value[a][v] - o) * inv;
-      const int lo = floorToInt(scaled[0]);
+      // (the scaled coordinates are compared as computed, not stored and reloaded: that round
+      // trip stalled on store forwarding)
+      const int lo = floorToInt((xa + r * unit.value[a][0] - o) * inv);
       const double upper = lo + 1.0;
-      int s = 0;
-#pragma omp simd reduction(+ : s)
-      for (int v = 0; v < kValues; ++v) s += scaled[v] < upper ? 1 : 0;
+      int s = 1;  // the lowest coordinate lies below lo + 1 by the definition of lo
+      for (int v = 1; v < kValues; ++v) s += (xa + r * unit.value[a][v] - o) * inv < upper ? 1 : 0;
       split[a] = s;
       const int m0 = t.mapIndex(lo, a), m1 = t.mapIndex(lo + 1, a);
       folded[a] = m0 == m1;
