@@ -19,8 +19,12 @@ void WallContactList::build(const ParticleSet& p, const std::vector<WallPrimitiv
       [&](std::size_t i, std::vector<std::uint32_t>& out) {
         const Vec3 x = p.position[i];
         const double reach = p.radius[i] + skin;
-        for (std::uint32_t w = 0; w < np; ++w)
-          if (distanceToPrimitive(primitives[w], x).distance < reach) out.push_back(w);
+        for (std::uint32_t w = 0; w < np; ++w) {
+          const WallPrimitive& prim = primitives[w];
+          // planes inline (the common box and distributor walls), the same value as distanceToPrimitive
+          const double d = prim.kind == PrimitiveKind::Plane ? dot(x - prim.a, prim.b) : distanceToPrimitive(prim, x).distance;
+          if (d < reach) out.push_back(w);
+        }
       },
       [&](std::size_t m) {
         tangentialHistory.assign(m, Vec3{});
