@@ -128,7 +128,12 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
   });
 
   // Appends the partners j > i within the cut-off (in cell order; sorted afterwards). The three
-  // cells along x of a (y, z) row of cells are consecutive in the cell order: one range.
+  // cells along x of a (y, z) row of cells are consecutive in the cell order: one range. The row
+  // is written through a raw pointer into space for all candidates (no per-entry capacity check,
+  // and the compiler need not reload what push_back might have changed).
+  const CellSortedSphere* spheres = sphere.data();
+  const std::uint32_t* sorted = grid.sorted.data();
+  const std::uint32_t* cellStart = grid.cellStart.data();
   auto appendPartners = [&](std::size_t i, std::vector<std::uint32_t>& out) {
     const std::uint32_t cell = grid.cellOf[i];
     const int c[3] = {static_cast<int>(cell % grid.dims[0]), static_cast<int>((cell / grid.dims[0]) % grid.dims[1]),
@@ -138,23 +143,35 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
     const int cy = neighbourCells(c[1], grid.dims[1], box.periodic[1], ny);
     const int cz = neighbourCells(c[2], grid.dims[2], box.periodic[2], nz);
     const int rx = consecutiveRuns(nx, cx, runs);
-    const Vec3 xi = p.position[i];
-    const double ri = p.radius[i] + skin;
-    const std::uint32_t* sorted = grid.sorted.data();
+    std::uint32_t range[27][2];  // candidate ranges in the cell order
+    int ranges = 0;
+    std::uint32_t candidates = 0;
     for (int a = 0; a < cz; ++a)
       for (int b = 0; b < cy; ++b) {
         const int rowOfCells = (nz[a] * grid.dims[1] + ny[b]) * grid.dims[0];
         for (int d = 0; d < rx; ++d) {
-          const std::uint32_t last = grid.cellStart[rowOfCells + runs[d][1] + 1];
-          for (std::uint32_t s = grid.cellStart[rowOfCells + runs[d][0]]; s < last; ++s) {
-            const std::uint32_t j = sorted[s];
-            if (j <= i) continue;
-            const Vec3 dx = box.minimumImage(xi - sphere[s].x);
-            const double cut = ri + sphere[s].r;
-            if (normSquared(dx) < cut * cut) out.push_back(j);
-          }
+          range[ranges][0] = cellStart[rowOfCells + runs[d][0]];
+          range[ranges][1] = cellStart[rowOfCells + runs[d][1] + 1];
+          candidates += range[ranges][1] - range[ranges][0];
+          ++ranges;
         }
       }
+    const std::size_t before = out.size();
+    out.resize(before + candidates);
+    std::uint32_t* row = out.data() + before;
+    std::uint32_t kept = 0;
+    const Vec3 xi = p.position[i];
+    const double ri = p.radius[i] + skin;
+    const auto self = static_cast<std::uint32_t>(i);
+    for (int q = 0; q < ranges; ++q)
+      for (std::uint32_t s = range[q][0]; s < range[q][1]; ++s) {
+        const std::uint32_t j = sorted[s];
+        if (j <= self) continue;
+        const Vec3 dx = box.minimumImage(xi - spheres[s].x);
+        const double cut = ri + spheres[s].r;
+        if (normSquared(dx) < cut * cut) row[kept++] = j;
+      }
+    out.resize(before + kept);
   };
 
   std::vector<std::uint32_t> oldStart = std::move(rowStart);
@@ -164,11 +181,31 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
   const bool carryRolling = withRollingHistory && oldRolling.size() == oldPartner.size();
   const std::int64_t oldRows = oldStart.empty() ? 0 : static_cast<std::int64_t>(oldStart.size()) - 1;
 
+  // No particle moved in the arrays (the rebuilds between reorderings): every particle keeps its
+  // index, old and new row i are both ascending, and one merge walk finds the persisting pairs.
+  bool sameIndices = true;
+  for (std::size_t k = 0; k < n && sameIndices; ++k)
+    sameIndices = (k < previousIndex.size() ? previousIndex[k] : -1) ==
+                  (static_cast<std::int64_t>(k) < oldRows ? static_cast<std::int64_t>(k) : -1);
+
   // Carries the history of the pairs of row i that were listed at the previous build.
   auto carryHistory = [&](std::size_t i) {
     const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
     const std::int64_t oi = i < previousIndex.size() ? previousIndex[i] : -1;
     if (oi < 0 || oi >= oldRows) return;
+    if (sameIndices) {
+      std::uint32_t q = oldStart[i];
+      const std::uint32_t qEnd = oldStart[i + 1];
+      for (std::uint32_t k = first; k < last && q < qEnd; ++k) {
+        const std::uint32_t j = partner[k];
+        while (q < qEnd && oldPartner[q] < j) ++q;
+        if (q < qEnd && oldPartner[q] == j) {  // (new particles j >= oldRows are in no old row)
+          tangentialHistory[k] = oldTangential[q];
+          if (carryRolling) rollingHistory[k] = oldRolling[q];
+        }
+      }
+      return;
+    }
     for (std::uint32_t k = first; k < last; ++k) {
       const std::uint32_t j = partner[k];
       const std::int64_t oj = j < previousIndex.size() ? previousIndex[j] : -1;
