@@ -86,6 +86,10 @@ Coupler::Coupler(Params& root, const CartesianGrid& grid, const std::array<bool,
     vorticity_[a] = Field(grid);
     divTau_[a] = Field(grid);
   }
+  // the cells stencils reach: interior rows (deposits zero and sum only these)
+  for (int k = 0; k < grid.cells[2]; ++k)
+    for (int j = 0; j < grid.cells[1]; ++j)
+      deposit_.runs.push_back({topology_.flat(0, j, k), static_cast<std::size_t>(grid.cells[0])});
   // ghost cell -> its source (periodic: wrapped image; wall: nearest interior cell, i.e. zero
   // normal gradient), listed once so that fillGhosts is one gather
   const auto& n = grid.cells;
@@ -111,11 +115,38 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   stencilsReady_ = true;
   const std::size_t n = particles.size();
   const std::size_t cells = solidFraction_.data().size();
-  const std::vector<double>& volume = depositChannels<1>(
-      stencils_, cells, deposit_,
-      [&](std::size_t p, double (&v)[1]) { v[0] = force::sphereVolume(2.0 * particles.radius[p]); });
-  particleVolume_ = 0.0;
-  for (std::size_t p = 0; p < n; ++p) particleVolume_ += force::sphereVolume(2.0 * particles.radius[p]);
+  // In the order of Simulation::advance (forces, DEM steps, void fraction, fluid sources) the
+  // exchange of the pending forces goes with the same stencils: one deposit pass for the volume
+  // and the exchange channels (each channel summed exactly as by its own deposit), kept for
+  // fillFluidSources.
+  const bool implicit = settings_.exchange == ExchangeScheme::SemiImplicit;
+  exchangeDeposited_ = false;
+  if (exchangePending_ && previousId_.size() == beta_.size()) realignToParticles(particles);
+  const bool fuse = exchangePending_ && beta_.size() == n;
+  auto particleVolume = [&](std::size_t p) { return force::sphereVolume(2.0 * particles.radius[p]); };
+  const double* volume = nullptr;
+  std::size_t volumeStride = 1;
+  if (fuse && implicit) {
+    volume = depositChannels<1 + kImplicitExchangeChannels>(stencils_, cells, deposit_, [&](std::size_t p, auto& v) {
+                v[0] = particleVolume(p);
+                exchangeValues<true>(p, v + 1);
+              }).data();
+    volumeStride = 1 + kImplicitExchangeChannels;
+  } else if (fuse) {
+    volume = depositChannels<1 + kExplicitExchangeChannels>(stencils_, cells, deposit_, [&](std::size_t p, auto& v) {
+                v[0] = particleVolume(p);
+                exchangeValues<false>(p, v + 1);
+              }).data();
+    volumeStride = 1 + kExplicitExchangeChannels;
+  } else {
+    volume = depositChannels<1>(stencils_, cells, deposit_,
+                                [&](std::size_t p, double (&v)[1]) { v[0] = particleVolume(p); })
+                 .data();
+  }
+  exchangeDeposited_ = fuse;
+  particleVolume_ = sumsOverIndices<1>(static_cast<std::int64_t>(n), [&](std::int64_t p, std::array<double, 1>& sum) {
+                      sum[0] += particleVolume(static_cast<std::size_t>(p));
+                    })[0];
   Field& solid = solidFraction_;
   const auto& c = topology_.grid.cells;
   const double cellVolume = topology_.grid.cellVolume();
@@ -124,8 +155,8 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
     for (int j = 0; j < c[1]; ++j)
       for (int i = 0; i < c[0]; ++i) {
         const std::size_t q = solid.index(i, j, k);
-        depositedVolume_ += volume[q];
-        solid.data()[q] = volume[q] / cellVolume;  // solid fraction
+        depositedVolume_ += volume[q * volumeStride];
+        solid.data()[q] = volume[q * volumeStride] / cellVolume;  // solid fraction
       }
   smoothField(topology_, settings_.smoothingLength, solid);
   clippedVolume_ = 0.0;
@@ -167,8 +198,14 @@ void Coupler::packSamples(const FluidView& fluid, const CouplingFields& fields) 
   double* out = samples_.data();
   const double* in[13];
   for (int ch = 0; ch < k; ++ch) in[ch] = src[ch]->data().data();
-  for (std::size_t q = 0; q < cells; ++q)
-    for (int ch = 0; ch < k; ++ch) out[q * k + ch] = in[ch][q];
+  // interior cells only: every stencil and interpolation maps its cells into the interior
+  const auto& n = topology_.grid.cells;
+  for (int kk = 0; kk < n[2]; ++kk)
+    for (int j = 0; j < n[1]; ++j) {
+      const std::size_t row = topology_.flat(0, j, kk);
+      for (std::size_t q = row; q < row + static_cast<std::size_t>(n[0]); ++q)
+        for (int ch = 0; ch < k; ++ch) out[q * k + ch] = in[ch][q];
+    }
   if (settings_.fluxVelocity) scaleToFluxVelocity(fields.voidFraction);
 }
 
@@ -215,26 +252,33 @@ void Coupler::alignPreviousSlip(const dem::ParticleSet& particles) {
   previousId_ = particles.id;
 }
 
-template <InterpolationMode Mode, class Law>
+template <InterpolationMode Mode, bool StandardChannels, class Law>
 void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet& particles) {
   // One pass per particle: interpolate every fluid field at once (interleaved cell buffer), slip,
   // Re, drag law (inlined), forces, and the per-particle exchange data for fillFluidSources.
+  // StandardChannels: the channel layout of the default forces (u, eps, grad p, div tau; no
+  // vorticity) fixed at compile time.
   const ForceSwitches& w = settings_.forces;
   const double k3 = settings_.coarseGraining.fluidForceScale();
   const double dPrimFactor = 1.0 / settings_.coarseGraining.factor;
   const bool modelB = settings_.model == ExchangeModel::B;
   const double rho = fluid.density, mu = fluid.viscosity;
   const double epsFloor = std::max(settings_.minVoidFraction, 1e-6);
-  const int channels = sampleChannels_;
-  const int cP = gradPChannel_, cT = divTauChannel_, cW = vorticityChannel_;
+  const int channels = StandardChannels ? kStandardChannels : sampleChannels_;
+  const int cP = StandardChannels ? 4 : gradPChannel_, cT = StandardChannels ? 7 : divTauChannel_,
+            cW = StandardChannels ? -1 : vorticityChannel_;
   const double* samples = samples_.data();
   const Vec3 buoyancy = w.buoyancy ? force::buoyancy(rho, 1.0, gravity_) : Vec3{};  // per volume
   forEachIndex(static_cast<std::int64_t>(particles.size()), 64, [&](std::int64_t ip) {
     const auto p = static_cast<std::size_t>(ip);
-    SampleWeights sw;
-    sampleWeights<Mode>(topology_, stencils_, p, particles.position[p], sw);
     double s[13];
-    sampleInterleaved(sw, samples, channels, s);
+    if constexpr (Mode == InterpolationMode::Trilinear) {
+      sampleTrilinear<StandardChannels ? kStandardChannels : 0>(topology_, particles.position[p], samples, channels, s);
+    } else {
+      SampleWeights sw;
+      sampleWeights<Mode>(topology_, stencils_, p, particles.position[p], sw);
+      sampleInterleaved(sw, samples, channels, s);
+    }
     const Vec3 uf{s[0], s[1], s[2]};
     const double eps = std::clamp(s[3], epsFloor, 1.0);
     const Vec3 slip = uf - particles.velocity[p];
@@ -263,7 +307,6 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
     fluidVelocityAtParticle_[p] = uf;
     slip_[p] = slip;
     beta_[p] = beta;
-    dragForce_[p] = fDrag;
     otherExchangedForce_[p] = exchangedOther;
     particles.externalForce[p] = fDrag + exchangedOther + particleOnly;
     particles.externalTorque[p] = torque;
@@ -286,27 +329,31 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
   if (w.virtualMass && !(fluid.timeStep > 0.0))
     throw std::invalid_argument("coupling: virtual mass force needs FluidView::timeStep > 0");
   if (w.saffmanMeiLift || w.magnusLift || w.fluidTorque) {
-    computeVorticity(topology_, fluid.velocity, vorticity_);
-    for (auto& f : vorticity_) fillGhosts(f);
+    computeVorticity(topology_, fluid.velocity, vorticity_);  // interior cells (all packSamples reads)
   }
   if (w.viscousStress && !fluid.viscousStressDivergence[0]) {
-    computeViscousStressDivergence(topology_, fluid.velocity, fluid.viscosity, divTau_);
-    for (auto& f : divTau_) fillGhosts(f);
+    computeViscousStressDivergence(topology_, fluid.velocity, fluid.viscosity, divTau_);  // interior cells
   }
   packSamples(fluid, fields);
-  for (auto* v : {&fluidVelocityAtParticle_, &slip_, &dragForce_, &otherExchangedForce_}) v->resize(n);
+  for (auto* v : {&fluidVelocityAtParticle_, &slip_, &otherExchangedForce_}) v->resize(n);
   beta_.resize(n);
   if (w.virtualMass) alignPreviousSlip(particles);
-  withDragCorrection(*drag_, [&](const auto& law) {  // law and interpolation resolved once
+  const bool standard = sampleChannels_ == kStandardChannels && gradPChannel_ == 4 && divTauChannel_ == 7;
+  withDragCorrection(*drag_, [&](const auto& law) {  // law, interpolation, channels resolved once
     switch (settings_.interpolation) {
-      case InterpolationMode::Cell: forcePass<InterpolationMode::Cell>(fluid, law, particles); break;
-      case InterpolationMode::Trilinear: forcePass<InterpolationMode::Trilinear>(fluid, law, particles); break;
-      case InterpolationMode::Stencil: forcePass<InterpolationMode::Stencil>(fluid, law, particles); break;
+      case InterpolationMode::Cell: forcePass<InterpolationMode::Cell, false>(fluid, law, particles); break;
+      case InterpolationMode::Trilinear:
+        if (standard) forcePass<InterpolationMode::Trilinear, true>(fluid, law, particles);
+        else forcePass<InterpolationMode::Trilinear, false>(fluid, law, particles);
+        break;
+      case InterpolationMode::Stencil: forcePass<InterpolationMode::Stencil, false>(fluid, law, particles); break;
     }
   });
   previousId_ = particles.id;
   previousSlip_ = slip_;
   forcesReady_ = true;
+  exchangePending_ = true;
+  exchangeDeposited_ = false;
 }
 
 void Coupler::realignToParticles(const dem::ParticleSet& particles) {
@@ -317,17 +364,15 @@ void Coupler::realignToParticles(const dem::ParticleSet& particles) {
   oldIndex.reserve(previousId_.size());
   for (std::size_t q = 0; q < previousId_.size(); ++q) oldIndex.emplace(previousId_[q], q);
   const std::size_t n = particles.size();
-  std::vector<Vec3> drag(n), other(n), slip(n);
+  std::vector<Vec3> other(n), slip(n);
   std::vector<double> beta(n, 0.0);
   for (std::size_t p = 0; p < n; ++p) {
     const auto it = oldIndex.find(particles.id[p]);
     if (it == oldIndex.end()) continue;
-    drag[p] = dragForce_[it->second];
     other[p] = otherExchangedForce_[it->second];
     slip[p] = slip_[it->second];
     beta[p] = beta_[it->second];
   }
-  dragForce_ = std::move(drag);
   otherExchangedForce_ = std::move(other);
   slip_ = std::move(slip);
   beta_ = std::move(beta);
@@ -344,7 +389,7 @@ void Coupler::fillFluidSources(const dem::ParticleSet& particles, CouplingFields
 }
 
 void Coupler::fillFluidSources(CouplingFields& fields) {
-  if (!forcesReady_ || dragForce_.size() != stencils_.size())
+  if (!forcesReady_ || beta_.size() != stencils_.size())
     throw std::logic_error("coupling: computeParticleForces must run before fillFluidSources (same particle set)");
   const bool implicit = settings_.exchange == ExchangeScheme::SemiImplicit;
   depositExchange(fields, implicit);
@@ -353,6 +398,24 @@ void Coupler::fillFluidSources(CouplingFields& fields) {
   fillGhosts(fields.dragCoefficient);
   for (auto& f : fields.particleVelocity) fillGhosts(f);
   updateMomentumBalance(fields, implicit);
+  exchangePending_ = exchangeDeposited_ = false;
+}
+
+template <bool Implicit>
+void Coupler::exchangeValues(std::size_t p, double* v) const {
+  if constexpr (!Implicit) {
+    // explicit: every exchanged force on the fluid
+    const Vec3 f = -(otherExchangedForce_[p] + force::drag(beta_[p], slip_[p]));
+    v[0] = f.x, v[1] = f.y, v[2] = f.z;
+  } else {
+    // implicit: 0-2 explicit force on the fluid, 3 beta, 4-6 beta (u_p - u_f@p)
+    const Vec3 f = -otherExchangedForce_[p];
+    const double b = beta_[p];
+    const Vec3 s = slip_[p];
+    v[0] = f.x, v[1] = f.y, v[2] = f.z;
+    v[3] = b;
+    v[4] = -b * s.x, v[5] = -b * s.y, v[6] = -b * s.z;
+  }
 }
 
 void Coupler::depositExchange(CouplingFields& fields, bool implicit) {
@@ -360,37 +423,40 @@ void Coupler::depositExchange(CouplingFields& fields, bool implicit) {
   const auto& c = topology_.grid.cells;
   const double inverseCellVolume = 1.0 / topology_.grid.cellVolume();
   const Field* const* u = lastFluid_.velocity;
+  // the sums of computeVoidFraction's fused deposit (channel 0 the volume) or a deposit of their own
+  const double* sum = nullptr;
+  std::size_t stride = 0;
+  if (exchangeDeposited_) {
+    stride = 1 + (implicit ? kImplicitExchangeChannels : kExplicitExchangeChannels);
+    sum = deposit_.merged.data() + 1;
+  } else if (implicit) {
+    stride = kImplicitExchangeChannels;
+    sum = depositChannels<kImplicitExchangeChannels>(stencils_, cells, deposit_, [&](std::size_t p, auto& v) {
+            exchangeValues<true>(p, v);
+          }).data();
+  } else {
+    stride = kExplicitExchangeChannels;
+    sum = depositChannels<kExplicitExchangeChannels>(stencils_, cells, deposit_, [&](std::size_t p, auto& v) {
+            exchangeValues<false>(p, v);
+          }).data();
+  }
   // interior cells are all written below, ghosts by fillGhosts
   if (!implicit) {
     fields.dragCoefficient.fill(0.0);
     for (int a = 0; a < 3; ++a) fields.particleVelocity[a].fill(0.0);
-    // explicit: every exchanged force on the fluid, as force density
-    const std::vector<double>& sum = depositChannels<3>(stencils_, cells, deposit_, [&](std::size_t p, double (&v)[3]) {
-      const Vec3 f = -(otherExchangedForce_[p] + dragForce_[p]);
-      v[0] = f.x, v[1] = f.y, v[2] = f.z;
-    });
     for (int k = 0; k < c[2]; ++k)
       for (int j = 0; j < c[1]; ++j)
         for (int i = 0; i < c[0]; ++i) {
           const std::size_t q = solidFraction_.index(i, j, k);
-          for (int a = 0; a < 3; ++a) fields.forceDensity[a].data()[q] = sum[q * 3 + a] * inverseCellVolume;
+          for (int a = 0; a < 3; ++a) fields.forceDensity[a].data()[q] = sum[q * stride + a] * inverseCellVolume;
         }
     return;
   }
-  // implicit: 0-2 explicit force on the fluid, 3 beta, 4-6 beta (u_p - u_f@p)
-  const std::vector<double>& sum = depositChannels<7>(stencils_, cells, deposit_, [&](std::size_t p, double (&v)[7]) {
-    const Vec3 f = -otherExchangedForce_[p];
-    const double b = beta_[p];
-    const Vec3 s = slip_[p];
-    v[0] = f.x, v[1] = f.y, v[2] = f.z;
-    v[3] = b;
-    v[4] = -b * s.x, v[5] = -b * s.y, v[6] = -b * s.z;
-  });
   for (int k = 0; k < c[2]; ++k)
     for (int j = 0; j < c[1]; ++j)
       for (int i = 0; i < c[0]; ++i) {
         const std::size_t q = solidFraction_.index(i, j, k);
-        const double* v = &sum[q * 7];
+        const double* v = &sum[q * stride];
         for (int a = 0; a < 3; ++a) fields.forceDensity[a].data()[q] = v[a] * inverseCellVolume;
         const double kv = v[3];  // sum w beta
         fields.dragCoefficient.data()[q] = kv * inverseCellVolume;
@@ -418,13 +484,15 @@ void Coupler::smoothExchange(CouplingFields& fields, bool implicit) const {
 
 void Coupler::updateMomentumBalance(const CouplingFields& fields, bool implicit) {
   // Newton's third law: particles' exchanged forces + fluid sources (explicit - K (u - u_p)) = 0.
-  Vec3 onParticles{}, onFluid{};
-  exchangedForceScale_ = 0.0;
-  for (std::size_t p = 0; p < dragForce_.size(); ++p) {
-    const Vec3 f = dragForce_[p] + otherExchangedForce_[p];
-    onParticles += f;
-    exchangedForceScale_ += norm(f);
-  }
+  const std::array<double, 4> sums =
+      sumsOverIndices<4>(static_cast<std::int64_t>(beta_.size()), [&](std::int64_t p, std::array<double, 4>& sum) {
+        const Vec3 f = force::drag(beta_[p], slip_[p]) + otherExchangedForce_[p];
+        sum[0] += f.x, sum[1] += f.y, sum[2] += f.z;
+        sum[3] += norm(f);
+      });
+  const Vec3 onParticles{sums[0], sums[1], sums[2]};
+  Vec3 onFluid{};
+  exchangedForceScale_ = sums[3];
   const auto& c = topology_.grid.cells;
   const double cellVolume = topology_.grid.cellVolume();
   const Field* const* u = lastFluid_.velocity;

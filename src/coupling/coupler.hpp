@@ -120,10 +120,15 @@ class Coupler {
  private:
   void packSamples(const FluidView& fluid, const CouplingFields& fields);
   void scaleToFluxVelocity(const Field& eps);
-  template <InterpolationMode Mode, class Law>
+  static constexpr int kStandardChannels = 10;  // u, eps, grad p, div tau
+  template <InterpolationMode Mode, bool StandardChannels, class Law>
   void forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet& particles);
   void alignPreviousSlip(const dem::ParticleSet& particles);
   void realignToParticles(const dem::ParticleSet& particles);
+  static constexpr int kImplicitExchangeChannels = 7, kExplicitExchangeChannels = 3;
+  /// The exchange quantities of particle p that are deposited (see depositExchange).
+  template <bool Implicit>
+  void exchangeValues(std::size_t p, double* v) const;
   void depositExchange(CouplingFields& fields, bool implicit);
   void smoothExchange(CouplingFields& fields, bool implicit) const;
   void updateMomentumBalance(const CouplingFields& fields, bool implicit);
@@ -145,13 +150,16 @@ class Coupler {
   DepositBuffers deposit_;
   std::vector<std::size_t> ghostTarget_, ghostSource_;  // ghost cell <- interior cell (fillGhosts)
   // per particle, from computeParticleForces
-  std::vector<Vec3> fluidVelocityAtParticle_, slip_, dragForce_, otherExchangedForce_;
+  // (drag force = beta_ slip_, force::drag)
+  std::vector<Vec3> fluidVelocityAtParticle_, slip_, otherExchangedForce_;
   std::vector<double> beta_;
   std::vector<std::int64_t> previousId_;
   std::vector<Vec3> previousSlip_;  // NaN where a particle has no history (virtual mass)
   double particleVolume_ = 0.0, depositedVolume_ = 0.0, clippedVolume_ = 0.0;
   Vec3 balanceError_;
   bool stencilsReady_ = false, forcesReady_ = false;
+  // forces computed, their exchange not yet filled; their exchange deposited by computeVoidFraction
+  bool exchangePending_ = false, exchangeDeposited_ = false;
   double exchangedForceScale_ = 0.0;
 };
 

@@ -10,6 +10,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -23,10 +24,14 @@ inline constexpr std::int64_t kMinParallelDeposit = 4096;  // particles; below: 
 struct DepositBuffers {
   std::vector<std::vector<double>> perThread;  // [thread][cell * C + ch]
   std::vector<double> merged;                  // [cell * C + ch]
+  /// The cells the stencils can reach as runs {first cell, cell count} (the interior rows of a
+  /// grid with ghosts); only these are zeroed and summed, other entries of the result are
+  /// undefined. Empty: all cells.
+  std::vector<std::array<std::size_t, 2>> runs;
 };
 
 /// values(p, double (&v)[C]) writes the C values of particle p. Returns the interleaved sums over
-/// `cells` flat cells (valid until the next deposit with the same buffers).
+/// `cells` flat cells (over b.runs if set; valid until the next deposit with the same buffers).
 template <int C, class Values>
 const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_t cells, DepositBuffers& b,
                                            Values&& values) {
@@ -34,6 +39,13 @@ const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_
   const std::size_t size = cells * C;
   b.merged.resize(size);
   const int threads = n >= kMinParallelDeposit ? omp_get_max_threads() : 1;
+  const std::array<std::size_t, 2> all{0, cells};
+  const std::array<std::size_t, 2>* runs = b.runs.empty() ? &all : b.runs.data();
+  const auto runCount = static_cast<std::int64_t>(b.runs.empty() ? 1 : b.runs.size());
+  auto zero = [&](double* sum) {
+    for (std::int64_t r = 0; r < runCount; ++r)
+      std::fill(sum + runs[r][0] * C, sum + (runs[r][0] + runs[r][1]) * C, 0.0);
+  };
   auto accumulate = [&](std::int64_t begin, std::int64_t end, double* sum) {
     for (std::int64_t p = begin; p < end; ++p) {
       double v[C];
@@ -48,7 +60,7 @@ const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_
     }
   };
   if (threads == 1) {
-    std::fill(b.merged.begin(), b.merged.end(), 0.0);
+    zero(b.merged.data());
     accumulate(0, n, b.merged.data());
     return b.merged;
   }
@@ -60,18 +72,20 @@ const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_
 #pragma omp single
     team = omp_get_num_threads();  // implicit barrier: every member sees it
     std::vector<double>& buf = b.perThread[t];
-    buf.assign(size, 0.0);
+    buf.resize(size);
+    zero(buf.data());
     // the static block of thread t (as schedule(static) without chunk would give it)
     const std::int64_t chunk = n / team, extra = n % team;
     const std::int64_t begin = t * chunk + std::min<std::int64_t>(t, extra);
     accumulate(begin, begin + chunk + (t < extra ? 1 : 0), buf.data());
 #pragma omp barrier
 #pragma omp for schedule(static)
-    for (std::int64_t q = 0; q < static_cast<std::int64_t>(size); ++q) {
-      double sum = 0.0;
-      for (int tt = 0; tt < team; ++tt) sum += b.perThread[tt][q];
-      b.merged[q] = sum;
-    }
+    for (std::int64_t r = 0; r < runCount; ++r)
+      for (std::size_t q = runs[r][0] * C; q < (runs[r][0] + runs[r][1]) * C; ++q) {
+        double sum = 0.0;
+        for (int tt = 0; tt < team; ++tt) sum += b.perThread[tt][q];
+        b.merged[q] = sum;
+      }
   }
   return b.merged;
 }

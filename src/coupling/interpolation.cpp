@@ -47,18 +47,23 @@ void computeVorticity(const GridTopology& t, const Field* const (&u)[3], Field (
 
 void computeViscousStressDivergence(const GridTopology& t, const Field* const (&u)[3], double viscosity,
                                     Field (&divTau)[3]) {
+  double h2[3];
+  for (int a = 0; a < 3; ++a) h2[a] = t.grid.spacing[a] * t.grid.spacing[a];
   forInteriorCells(t, [&](int i, int j, int k) {
     const int idx[3] = {i, j, k};
+    int lo[3], hi[3];  // neighbour cell along each axis minus this cell (wrapped, or clamped at walls)
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = (t.periodic[a] ? t.mapIndex(idx[a] - 1, a) : std::max(idx[a] - 1, 0)) - idx[a];
+      hi[a] = (t.periodic[a] ? t.mapIndex(idx[a] + 1, a) : std::min(idx[a] + 1, t.grid.cells[a] - 1)) - idx[a];
+    }
     for (int c = 0; c < 3; ++c) {
       const Field& f = *u[c];
-      const double centre = f(i, j, k);
+      const double* d = f.data().data() + f.index(i, j, k);
+      const double centre = d[0];
       double lap = 0.0;
       for (int a = 0; a < 3; ++a) {
-        const double h2 = t.grid.spacing[a] * t.grid.spacing[a];
-        int lo[3] = {i, j, k}, hi[3] = {i, j, k};
-        lo[a] = t.periodic[a] ? t.mapIndex(idx[a] - 1, a) : std::max(idx[a] - 1, 0);
-        hi[a] = t.periodic[a] ? t.mapIndex(idx[a] + 1, a) : std::min(idx[a] + 1, t.grid.cells[a] - 1);
-        lap += (f(hi[0], hi[1], hi[2]) - 2.0 * centre + f(lo[0], lo[1], lo[2])) / h2;
+        const std::ptrdiff_t st = f.stride(a);
+        lap += (d[hi[a] * st] - 2.0 * centre + d[lo[a] * st]) / h2[a];
       }
       divTau[c](i, j, k) = viscosity * lap;
     }

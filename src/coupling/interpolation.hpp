@@ -99,13 +99,58 @@ inline void sampleFields(const SampleWeights& w, const Field* const (&fields)[N]
 
 /// out[ch] = sum_m w_m buffer[cell_m * channels + ch] for a channel-interleaved cell buffer (all
 /// fields a particle needs side by side: one cache line per stencil entry).
+/// Channels > 0: the channel count known at compile time (the sums stay in registers), same
+/// operations in the same order as the run-time count (Channels = 0).
+template <int Channels = 0>
 inline void sampleInterleaved(const SampleWeights& w, const double* buffer, int channels, double* out) {
-  for (int ch = 0; ch < channels; ++ch) out[ch] = 0.0;
+  if constexpr (Channels > 0) channels = Channels;
+  double sum[Channels > 0 ? Channels : 1];
+  double* acc = Channels > 0 ? sum : out;
+  for (int ch = 0; ch < channels; ++ch) acc[ch] = 0.0;
   for (int m = 0; m < w.count; ++m) {
     const double* v = buffer + w.cell[m] * channels;
     const double wm = w.weight[m];
-    for (int ch = 0; ch < channels; ++ch) out[ch] += wm * v[ch];
+    for (int ch = 0; ch < channels; ++ch) acc[ch] += wm * v[ch];
   }
+  if constexpr (Channels > 0)
+    for (int ch = 0; ch < Channels; ++ch) out[ch] = sum[ch];
+}
+
+/// Trilinear interpolation of a channel-interleaved cell buffer at x, without building the weight
+/// arrays: the same cells, weights and sums in the same order as trilinearWeights followed by
+/// sampleInterleaved (bit-identical), with the 8 cells as base + axis offsets.
+template <int Channels = 0>
+inline void sampleTrilinear(const GridTopology& t, const Vec3& x, const double* buffer, int channels, double* out) {
+  if constexpr (Channels > 0) channels = Channels;
+  int lo[3];
+  std::ptrdiff_t step[3];  // flat offset of the upper cell along each axis (0 where folded onto lo)
+  double frac[3];
+  const std::ptrdiff_t stride[3] = {1, t.grid.cells[0] + 2 * t.grid.ghosts,
+                                    static_cast<std::ptrdiff_t>(t.grid.cells[0] + 2 * t.grid.ghosts) *
+                                        (t.grid.cells[1] + 2 * t.grid.ghosts)};
+  for (int a = 0; a < 3; ++a) {
+    const int n = t.grid.cells[a];
+    double s = (x[a] - t.grid.origin[a]) * t.inverseSpacing[a] - 0.5;
+    if (!t.periodic[a]) s = std::min(std::max(s, 0.0), static_cast<double>(n - 1));
+    const int f = floorToInt(s);
+    frac[a] = s - f;
+    lo[a] = t.mapIndex(f, a);
+    step[a] = (t.mapIndex(f + 1, a) - lo[a]) * stride[a];
+  }
+  const double* base = buffer + t.flat(lo[0], lo[1], lo[2]) * channels;
+  double sum[Channels > 0 ? Channels : 1];
+  double* acc = Channels > 0 ? sum : out;
+  for (int ch = 0; ch < channels; ++ch) acc[ch] = 0.0;
+  for (int dk = 0; dk < 2; ++dk)
+    for (int dj = 0; dj < 2; ++dj)
+      for (int di = 0; di < 2; ++di) {
+        const double wm =
+            (di ? frac[0] : 1.0 - frac[0]) * (dj ? frac[1] : 1.0 - frac[1]) * (dk ? frac[2] : 1.0 - frac[2]);
+        const double* v = base + (di * step[0] + dj * step[1] + dk * step[2]) * channels;
+        for (int ch = 0; ch < channels; ++ch) acc[ch] += wm * v[ch];
+      }
+  if constexpr (Channels > 0)
+    for (int ch = 0; ch < Channels; ++ch) out[ch] = sum[ch];
 }
 
 /// One-off sample of several fields at particle p (tests, diagnostics).

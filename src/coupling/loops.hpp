@@ -2,7 +2,12 @@
 // Index loops that stay serial for small work: an OpenMP region costs microseconds (and much more
 // on an oversubscribed machine), which dominates the tiny loops of small grids or few particles.
 // The choice depends only on the size, so results stay reproducible for a given thread count.
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
 #include <cstdint>
+#include <vector>
 
 #include "core/parallel.hpp"
 
@@ -27,6 +32,33 @@ inline double sumOverIndices(std::int64_t n, Body&& body) {
     return s;
   }
   return parallelSum(n, body);
+}
+
+/// N sums over [0, n): body(i, sums) adds index i's terms. On one thread (or for small n) one pass
+/// in index order; otherwise each thread sums its static block and the block sums are added in
+/// thread order (bit-identical for a given thread count).
+template <int N, class Body>
+inline std::array<double, N> sumsOverIndices(std::int64_t n, Body&& body) {
+  std::array<double, N> total{};
+  const int threads = n < kMinParallelWork ? 1 : omp_get_max_threads();
+  if (threads == 1) {
+    for (std::int64_t i = 0; i < n; ++i) body(i, total);
+    return total;
+  }
+  std::vector<std::array<double, N>> partial(threads, std::array<double, N>{});
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num(), team = omp_get_num_threads();
+    const std::int64_t chunk = n / team, extra = n % team;
+    const std::int64_t begin = t * chunk + std::min<std::int64_t>(t, extra);
+    const std::int64_t end = begin + chunk + (t < extra ? 1 : 0);
+    std::array<double, N> local{};
+    for (std::int64_t i = begin; i < end; ++i) body(i, local);
+    partial[t] = local;
+  }
+  for (const auto& part : partial)
+    for (int c = 0; c < N; ++c) total[c] += part[c];
+  return total;
 }
 
 }  // namespace gf::coupling

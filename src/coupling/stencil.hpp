@@ -55,6 +55,13 @@ class StencilWriter {
       ++count_;
     }
   }
+  /// Appends the entry if `keep`, without a branch: the entry is written in any case (the caller
+  /// guarantees capacity for every call, kept or not) and counted only if kept.
+  void appendIf(bool keep, std::size_t cell, double w) {
+    cell_[count_] = cell;
+    weight_[count_] = w;
+    count_ += keep ? 1 : 0;
+  }
   /// Scales the weights to sum 1; returns the sum before (0 if empty).
   double normalise() {
     double sum = 0.0;

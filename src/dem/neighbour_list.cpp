@@ -91,6 +91,29 @@ std::vector<std::uint32_t> mortonOrder(const std::vector<Vec3>& x, const Vec3& b
   return order;
 }
 
+namespace {
+
+/// Position and radius side by side in cell order: the candidates of a row of cells are one
+/// contiguous range.
+struct CellSortedSphere {
+  Vec3 x;
+  double r;
+};
+
+/// Runs of consecutive cells among up to 3 cell indices along x: [first, last] pairs.
+int consecutiveRuns(int* cells, int count, int (*runs)[2]) {
+  for (int q = 1; q < count; ++q)  // insertion sort of <= 3 values
+    for (int m = q; m > 0 && cells[m - 1] > cells[m]; --m) std::swap(cells[m - 1], cells[m]);
+  int m = 0;
+  for (int q = 0; q < count; ++q) {
+    if (m > 0 && cells[q] == runs[m - 1][1] + 1) runs[m - 1][1] = cells[q];
+    else runs[m][0] = runs[m][1] = cells[q], ++m;
+  }
+  return m;
+}
+
+}  // namespace
+
 void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Vec3& boxMin, const Vec3& boxMax,
                           double skin, const std::vector<std::int64_t>& previousIndex, bool withRollingHistory) {
   const std::size_t n = p.size();
@@ -98,64 +121,98 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
   for (double r : p.radius) maxRadius = std::max(maxRadius, r);
   CellGrid grid;
   grid.build(p.position, boxMin, boxMax, 2.0 * maxRadius + skin);
+  std::vector<CellSortedSphere> sphere(n);
+  parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t s) {
+    const std::uint32_t i = grid.sorted[s];
+    sphere[s] = {p.position[i], p.radius[i]};
+  });
 
-  // Visits the partners j > i within the cut-off, in a fixed order (cells, then index).
-  auto forEachPartner = [&](std::size_t i, auto&& visit) {
-    int c[3];
-    grid.cellIndex(p.position[i], c);
-    int nx[3], ny[3], nz[3];
+  // Appends the partners j > i within the cut-off (in cell order; sorted afterwards). The three
+  // cells along x of a (y, z) row of cells are consecutive in the cell order: one range. The row
+  // is written through a raw pointer into space for all candidates (no per-entry capacity check,
+  // and the compiler need not reload what push_back might have changed).
+  const CellSortedSphere* spheres = sphere.data();
+  const std::uint32_t* sorted = grid.sorted.data();
+  const std::uint32_t* cellStart = grid.cellStart.data();
+  auto appendPartners = [&](std::size_t i, std::vector<std::uint32_t>& out) {
+    const std::uint32_t cell = grid.cellOf[i];
+    const int c[3] = {static_cast<int>(cell % grid.dims[0]), static_cast<int>((cell / grid.dims[0]) % grid.dims[1]),
+                      static_cast<int>(cell / (static_cast<std::uint32_t>(grid.dims[0]) * grid.dims[1]))};
+    int nx[3], ny[3], nz[3], runs[3][2];
     const int cx = neighbourCells(c[0], grid.dims[0], box.periodic[0], nx);
     const int cy = neighbourCells(c[1], grid.dims[1], box.periodic[1], ny);
     const int cz = neighbourCells(c[2], grid.dims[2], box.periodic[2], nz);
+    const int rx = consecutiveRuns(nx, cx, runs);
+    std::uint32_t range[27][2];  // candidate ranges in the cell order
+    int ranges = 0;
+    std::uint32_t candidates = 0;
+    for (int a = 0; a < cz; ++a)
+      for (int b = 0; b < cy; ++b) {
+        const int rowOfCells = (nz[a] * grid.dims[1] + ny[b]) * grid.dims[0];
+        for (int d = 0; d < rx; ++d) {
+          range[ranges][0] = cellStart[rowOfCells + runs[d][0]];
+          range[ranges][1] = cellStart[rowOfCells + runs[d][1] + 1];
+          candidates += range[ranges][1] - range[ranges][0];
+          ++ranges;
+        }
+      }
+    const std::size_t before = out.size();
+    out.resize(before + candidates);
+    std::uint32_t* row = out.data() + before;
+    std::uint32_t kept = 0;
     const Vec3 xi = p.position[i];
     const double ri = p.radius[i] + skin;
-    for (int a = 0; a < cz; ++a)
-      for (int b = 0; b < cy; ++b)
-        for (int d = 0; d < cx; ++d) {
-          const int cell = (nz[a] * grid.dims[1] + ny[b]) * grid.dims[0] + nx[d];
-          for (std::uint32_t s = grid.cellStart[cell]; s < grid.cellStart[cell + 1]; ++s) {
-            const std::uint32_t j = grid.sorted[s];
-            if (j <= i) continue;
-            const Vec3 dx = box.minimumImage(xi - p.position[j]);
-            const double cut = ri + p.radius[j];
-            if (normSquared(dx) < cut * cut) visit(j);
-          }
-        }
+    const auto self = static_cast<std::uint32_t>(i);
+    for (int q = 0; q < ranges; ++q)
+      for (std::uint32_t s = range[q][0]; s < range[q][1]; ++s) {
+        const std::uint32_t j = sorted[s];
+        if (j <= self) continue;
+        const Vec3 dx = box.minimumImage(xi - spheres[s].x);
+        const double cut = ri + spheres[s].r;
+        if (normSquared(dx) < cut * cut) row[kept++] = j;
+      }
+    out.resize(before + kept);
   };
-
-  std::vector<std::uint32_t> count(n + 1, 0);
-  parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t i) {
-    std::uint32_t k = 0;
-    forEachPartner(static_cast<std::size_t>(i), [&](std::uint32_t) { ++k; });
-    count[i + 1] = k;
-  });
-  for (std::size_t i = 0; i < n; ++i) count[i + 1] += count[i];
 
   std::vector<std::uint32_t> oldStart = std::move(rowStart);
   std::vector<std::uint32_t> oldPartner = std::move(partner);
   std::vector<Vec3> oldTangential = std::move(tangentialHistory);
   std::vector<Vec3> oldRolling = std::move(rollingHistory);
-  rowStart = std::move(count);
-  partner.assign(rowStart[n], 0);
-  tangentialHistory.assign(rowStart[n], Vec3{});
-  if (withRollingHistory) rollingHistory.assign(rowStart[n], Vec3{});
   const bool carryRolling = withRollingHistory && oldRolling.size() == oldPartner.size();
   const std::int64_t oldRows = oldStart.empty() ? 0 : static_cast<std::int64_t>(oldStart.size()) - 1;
 
-  parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+  // No particle moved in the arrays (the rebuilds between reorderings): every particle keeps its
+  // index, old and new row i are both ascending, and one merge walk finds the persisting pairs.
+  bool sameIndices = true;
+  for (std::size_t k = 0; k < n && sameIndices; ++k)
+    sameIndices = (k < previousIndex.size() ? previousIndex[k] : -1) ==
+                  (static_cast<std::int64_t>(k) < oldRows ? static_cast<std::int64_t>(k) : -1);
+
+  // Carries the history of the pairs of row i that were listed at the previous build.
+  auto carryHistory = [&](std::size_t i) {
     const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
-    std::uint32_t k = first;
-    forEachPartner(static_cast<std::size_t>(i), [&](std::uint32_t j) { partner[k++] = j; });
-    // Ascending partners: the force loop walks memory forwards and knows the row's last partner.
-    std::sort(partner.begin() + first, partner.begin() + last);
-    const std::int64_t oi = i < static_cast<std::int64_t>(previousIndex.size()) ? previousIndex[i] : -1;
+    const std::int64_t oi = i < previousIndex.size() ? previousIndex[i] : -1;
     if (oi < 0 || oi >= oldRows) return;
-    for (k = first; k < last; ++k) {
+    if (sameIndices) {
+      std::uint32_t q = oldStart[i];
+      const std::uint32_t qEnd = oldStart[i + 1];
+      for (std::uint32_t k = first; k < last && q < qEnd; ++k) {
+        const std::uint32_t j = partner[k];
+        while (q < qEnd && oldPartner[q] < j) ++q;
+        if (q < qEnd && oldPartner[q] == j) {  // (new particles j >= oldRows are in no old row)
+          tangentialHistory[k] = oldTangential[q];
+          if (carryRolling) rollingHistory[k] = oldRolling[q];
+        }
+      }
+      return;
+    }
+    for (std::uint32_t k = first; k < last; ++k) {
       const std::uint32_t j = partner[k];
       const std::int64_t oj = j < previousIndex.size() ? previousIndex[j] : -1;
       if (oj < 0 || oj >= oldRows) continue;
       const std::int64_t owner = std::min(oi, oj), other = std::max(oi, oj);
-      for (std::uint32_t q = oldStart[owner]; q < oldStart[owner + 1]; ++q)
+      // old rows are ascending: stop at the first partner beyond `other`
+      for (std::uint32_t q = oldStart[owner]; q < oldStart[owner + 1] && oldPartner[q] <= other; ++q)
         if (oldPartner[q] == static_cast<std::uint32_t>(other)) {
           const double sign = oi < oj ? 1.0 : -1.0;
           tangentialHistory[k] = sign * oldTangential[q];
@@ -163,7 +220,21 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
           break;
         }
     }
-  });
+  };
+
+  buildCompressedRows(
+      n, scratch_, rowStart, partner,
+      [&](std::size_t i, std::vector<std::uint32_t>& out) {
+        const std::size_t before = out.size();
+        appendPartners(i, out);
+        // Ascending partners: the force loop walks memory forwards and knows the row's last partner.
+        std::sort(out.begin() + static_cast<std::ptrdiff_t>(before), out.end());
+      },
+      [&](std::size_t entries) {
+        tangentialHistory.assign(entries, Vec3{});
+        if (withRollingHistory) rollingHistory.assign(entries, Vec3{});
+      },
+      carryHistory);
 }
 
 std::size_t NeighbourList::memoryBytes() const {

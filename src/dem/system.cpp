@@ -150,6 +150,7 @@ void System::refresh() {
   std::vector<std::uint32_t> order(particles_.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
   rebuild(std::move(order), list_.rows());
+  updateInverseInertia();
   computeForces(0.0, 0.0);
 }
 
@@ -190,7 +191,9 @@ void System::rebuild(std::vector<std::uint32_t> order, std::size_t listedRows) {
   positionAtBuild_ = particles_.position;
   timeAtBuild_ = time_;
   ++rebuilds_;
-  updateInverseInertia();
+  // 1/m and 1/I follow the particles; unchanged when none moved in the arrays, none came or went
+  // (refresh() recomputes them in any case: its caller may have edited masses)
+  if (!identity || inverseMass_.size() != particles_.size()) updateInverseInertia();
 }
 
 void System::updateInverseInertia() {

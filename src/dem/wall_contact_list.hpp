@@ -25,6 +25,9 @@ class WallContactList {
   std::size_t entries() const { return primitive.size(); }
   void save(BinaryWriter& out) const;
   void load(BinaryReader& in);
+
+ private:
+  std::vector<std::vector<std::uint32_t>> scratch_;  // per-thread row buffers of build()
 };
 
 }  // namespace gf::dem

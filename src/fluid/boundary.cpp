@@ -10,23 +10,34 @@ namespace {
 
 constexpr const char* kSideNames[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
 
-/// Calls body(p, q, base, stride) for every grid line along `axis` (all ghost rows of the other
-/// two axes included); base is the flat index of point 0 on the line.
+/// Calls body(coord, base) for every grid line along `axis`, ghost rows of the other two axes
+/// included: coord[b] is the line's index along the two other axes b (coord[axis] = 0), base the
+/// flat index of point 0 on the line. Lines run with the lower of the other axes innermost (x for
+/// the y and z lines: neighbouring memory); they are independent (each writes only its own ghost
+/// points), threaded for large faces.
 template <class Body>
 void forEachLine(const Field& f, int axis, Body&& body) {
   const int g = f.grid().ghosts;
-  const int b1 = (axis + 1) % 3, b2 = (axis + 2) % 3;
+  const int lo = axis == 0 ? 1 : 0, hi = axis == 2 ? 1 : 2;
   const auto& pts = f.points();
-  const int n1 = pts[b1] + 2 * g, n2 = pts[b2] + 2 * g;
-  // Lines are independent (each writes only its own ghost points): threaded for large faces.
-  parallelFor(static_cast<std::int64_t>(n1) * n2, [&](std::int64_t line) {
-    const int p = static_cast<int>(line % n1) - g, q = static_cast<int>(line / n1) - g;
-    int idx[3];
-    idx[axis] = 0;
-    idx[b1] = p;
-    idx[b2] = q;
-    body(p, q, f.index(idx[0], idx[1], idx[2]), f.stride(axis));
-  });
+  const int nLo = pts[lo] + 2 * g, nHi = pts[hi] + 2 * g;
+  const std::ptrdiff_t sLo = f.stride(lo), sHi = f.stride(hi);
+  const std::size_t first = f.index(0, 0, 0) - static_cast<std::size_t>(g * sLo + g * sHi);
+  auto row = [&](std::int64_t q) {
+    int coord[3] = {0, 0, 0};
+    coord[hi] = static_cast<int>(q) - g;
+    const std::size_t b = first + static_cast<std::size_t>(q * sHi);
+    for (int p = 0; p < nLo; ++p) {
+      coord[lo] = p - g;
+      body(static_cast<const int*>(coord), b + static_cast<std::size_t>(p * sLo));
+    }
+  };
+  if (static_cast<std::int64_t>(nLo) * nHi < kSerialBelow || serialLoops()) {
+    for (int q = 0; q < nHi; ++q) row(q);
+  } else {
+#pragma omp parallel for schedule(static)
+    for (int q = 0; q < nHi; ++q) row(q);
+  }
 }
 
 }  // namespace
@@ -88,16 +99,17 @@ double inletNormalVelocity(const Boundaries& bc, int axis, int side, const Carte
 }
 
 void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode) {
+  // One loop per side and condition (the condition is decided once, not per grid line).
   const CartesianGrid& grid = u.grid();
   const int g = grid.ghosts;
   double* d = u.data().data();
   const bool full = mode == GhostMode::Full;
   for (int a = 0; a < 3; ++a) {
     const int n = grid.cells[a];
-    const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+    const std::ptrdiff_t st = u.stride(a);
     if (bc.periodic(a)) {
       if (c == a) {
-        forEachLine(u, a, [&](int, int, std::size_t base, std::ptrdiff_t st) {
+        forEachLine(u, a, [&](const int*, std::size_t base) {
           d[base + n * st] = d[base];
           for (int m = 1; m <= g; ++m) {
             d[base - m * st] = d[base + (n - m) * st];
@@ -105,7 +117,7 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode) {
           }
         });
       } else {
-        forEachLine(u, a, [&](int, int, std::size_t base, std::ptrdiff_t st) {
+        forEachLine(u, a, [&](const int*, std::size_t base) {
           for (int m = 1; m <= g; ++m) {
             d[base - m * st] = d[base + (n - m) * st];
             d[base + (n - 1 + m) * st] = d[base + (m - 1) * st];
@@ -116,68 +128,157 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode) {
     }
     for (int s = 0; s < 2; ++s) {
       const BoundarySide& side = bc.at(a, s);
+      const std::ptrdiff_t in = s == 0 ? st : -st;  // one point inwards
       if (c == a) {
-        // Normal component: boundary face at 0 or n; k counts inwards from it.
-        const Field* eps = side.superficial ? bc.voidFraction : nullptr;
-        forEachLine(u, a, [&](int p, int q, std::size_t base, std::ptrdiff_t st) {
-          auto at = [&](int k) -> double& { return d[base + (s == 0 ? k : n - k) * st]; };
-          switch (side.type) {
-            case BoundaryType::Wall:
-            case BoundaryType::Slip:
-              at(0) = 0.0;
-              for (int m = 1; m <= g; ++m) at(-m) = -at(m);
-              break;
-            case BoundaryType::Inlet: {
+        // Normal component: boundary face at 0 or n; at(k) = l[k * in] counts inwards from it.
+        const std::ptrdiff_t face = s == 0 ? 0 : n * st;
+        switch (side.type) {
+          case BoundaryType::Wall:
+          case BoundaryType::Slip:
+            forEachLine(u, a, [&](const int*, std::size_t base) {
+              double* l = d + base + face;
+              l[0] = 0.0;
+              for (int m = 1; m <= g; ++m) l[-m * in] = -l[m * in];
+            });
+            break;
+          case BoundaryType::Inlet: {
+            const Field* eps = side.superficial ? bc.voidFraction : nullptr;
+            const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+            forEachLine(u, a, [&](const int* coord, std::size_t base) {
               double value = 0.0;
               if (full) {
                 Vec3 x;
                 x[a] = grid.origin[a] + (s == 0 ? 0 : n) * grid.spacing[a];
-                x[b1] = grid.origin[b1] + (p + 0.5) * grid.spacing[b1];
-                x[b2] = grid.origin[b2] + (q + 0.5) * grid.spacing[b2];
+                x[b1] = grid.origin[b1] + (coord[b1] + 0.5) * grid.spacing[b1];
+                x[b2] = grid.origin[b2] + (coord[b2] + 0.5) * grid.spacing[b2];
                 value = inletNormalVelocity(bc, a, s, grid, x);
                 if (eps) {
                   // Superficial inlet: eps_f u_f = U at the face (continuity uses the same eps_f).
                   int cell[3];
                   cell[a] = s == 0 ? 0 : n - 1;
-                  cell[b1] = p;
-                  cell[b2] = q;
+                  cell[b1] = coord[b1];
+                  cell[b2] = coord[b2];
                   const std::size_t cc = eps->index(cell[0], cell[1], cell[2]);
                   const std::ptrdiff_t outward = (s == 0 ? -1 : 1) * eps->stride(a);
                   const double epsF = 0.5 * (eps->data()[cc] + eps->data()[cc + outward]);
                   if (epsF > 0.0) value /= epsF;
                 }
               }
-              at(0) = value;
-              for (int m = 1; m <= g; ++m) at(-m) = value;
-              break;
-            }
-            default:  // outlets: the boundary face is set by the solver; ghosts copy it
-              if (!full) at(0) = 0.0;
-              for (int m = 1; m <= g; ++m) at(-m) = at(0);
-              break;
+              double* l = d + base + face;
+              l[0] = value;
+              for (int m = 1; m <= g; ++m) l[-m * in] = value;
+            });
+            break;
           }
+          default:  // outlets: the boundary face is set by the solver; ghosts copy it
+            forEachLine(u, a, [&](const int*, std::size_t base) {
+              double* l = d + base + face;
+              if (!full) l[0] = 0.0;
+              for (int m = 1; m <= g; ++m) l[-m * in] = l[0];
+            });
+            break;
+        }
+      } else {
+        // Tangential component: cell rows 0..n-1; at(k) = l[k * in], k = 0 next to the boundary.
+        const std::ptrdiff_t row0 = s == 0 ? 0 : (n - 1) * st;
+        switch (side.type) {
+          case BoundaryType::Wall:
+          case BoundaryType::Inlet: {
+            const double uw = full ? side.velocity[c] * rampFactor(side, bc.time) : 0.0;
+            // Quadratic through wall value, rows 0 and 1: exact for parabolic profiles.
+            if (n >= 2)
+              forEachLine(u, a, [&](const int*, std::size_t base) {
+                double* l = d + base + row0;
+                l[-in] = (8.0 * uw - 6.0 * l[0] + l[in]) / 3.0;
+                l[-2 * in] = 2.0 * uw - l[in];
+              });
+            else
+              forEachLine(u, a, [&](const int*, std::size_t base) {
+                double* l = d + base + row0;
+                l[-in] = 2.0 * uw - l[0];
+                l[-2 * in] = l[-in];
+              });
+            break;
+          }
+          case BoundaryType::Slip:
+            forEachLine(u, a, [&](const int*, std::size_t base) {
+              double* l = d + base + row0;
+              for (int m = 1; m <= g; ++m) l[-m * in] = l[(n >= m ? m - 1 : 0) * in];
+            });
+            break;
+          default:
+            forEachLine(u, a, [&](const int*, std::size_t base) {
+              double* l = d + base + row0;
+              for (int m = 1; m <= g; ++m) l[-m * in] = l[0];
+            });
+            break;
+        }
+      }
+    }
+  }
+}
+
+void fillVelocityStencilGhosts(Field& u, int c, const Boundaries& bc) {
+  const CartesianGrid& grid = u.grid();
+  const auto& pts = u.points();
+  double* d = u.data().data();
+  for (int a = 0; a < 3; ++a) {
+    const int n = grid.cells[a];
+    const bool periodic = bc.periodic(a);
+    if (!periodic && c == a) continue;  // boundary faces: kept by the sweeps
+    // The two other axes, lower one innermost (contiguous rows for the y and z faces).
+    const int lo = a == 0 ? 1 : 0, hi = a == 2 ? 1 : 2;
+    const std::ptrdiff_t st = u.stride(a), sLo = u.stride(lo), sHi = u.stride(hi);
+    const std::size_t origin = u.index(0, 0, 0);
+    const int nLo = pts[lo], nHi = pts[hi];
+    // Value of the first ghost from the boundary row (at0) and the next one (at1): tangential
+    // components (c != a) as in fillVelocityGhosts; periodic axes copy from the other end.
+    auto forRows = [&](auto&& body) {
+      auto row = [&](std::int64_t q) {
+        const std::size_t base = origin + static_cast<std::size_t>(q) * sHi;
+        for (int p = 0; p < nLo; ++p) body(base + static_cast<std::size_t>(p) * sLo);
+      };
+      if (serialLoops() || static_cast<std::int64_t>(nLo) * nHi < kSerialElementsBelow / 8) {
+        for (int q = 0; q < nHi; ++q) row(q);
+      } else {
+#pragma omp parallel for schedule(static)
+        for (int q = 0; q < nHi; ++q) row(q);
+      }
+    };
+    if (periodic) {
+      if (c == a) {
+        forRows([&](std::size_t b) {
+          d[b + n * st] = d[b];
+          d[b - st] = d[b + (n - 1) * st];
         });
       } else {
-        // Tangential component: cell rows 0..n-1; k = 0 is the row next to the boundary.
-        forEachLine(u, a, [&](int, int, std::size_t base, std::ptrdiff_t st) {
-          auto at = [&](int k) -> double& { return d[base + (s == 0 ? k : n - 1 - k) * st]; };
-          switch (side.type) {
-            case BoundaryType::Wall:
-            case BoundaryType::Inlet: {
-              const double uw = full ? side.velocity[c] * rampFactor(side, bc.time) : 0.0;
-              // Quadratic through wall value, rows 0 and 1: exact for parabolic profiles.
-              at(-1) = n >= 2 ? (8.0 * uw - 6.0 * at(0) + at(1)) / 3.0 : 2.0 * uw - at(0);
-              at(-2) = n >= 2 ? 2.0 * uw - at(1) : at(-1);
-              break;
-            }
-            case BoundaryType::Slip:
-              for (int m = 1; m <= g; ++m) at(-m) = at(n >= m ? m - 1 : 0);
-              break;
-            default:
-              for (int m = 1; m <= g; ++m) at(-m) = at(0);
-              break;
-          }
+        forRows([&](std::size_t b) {
+          d[b - st] = d[b + (n - 1) * st];
+          d[b + n * st] = d[b];
         });
+      }
+      continue;
+    }
+    for (int s = 0; s < 2; ++s) {
+      const BoundarySide& side = bc.at(a, s);
+      // at(k) = d[b + first + k * inward]: k = 0 is the row next to the boundary.
+      const std::ptrdiff_t first = s == 0 ? 0 : (n - 1) * st, inward = s == 0 ? st : -st;
+      switch (side.type) {
+        case BoundaryType::Wall:
+        case BoundaryType::Inlet: {
+          const double uw = side.velocity[c] * rampFactor(side, bc.time);
+          if (n >= 2)
+            forRows([&](std::size_t b) {
+              const std::size_t r0 = b + first;
+              d[r0 - inward] = (8.0 * uw - 6.0 * d[r0] + d[r0 + inward]) / 3.0;
+            });
+          else
+            forRows([&](std::size_t b) { d[b + first - inward] = 2.0 * uw - d[b + first]; });
+          break;
+        }
+        default:  // slip and outlets: zero gradient
+          forRows([&](std::size_t b) { d[b + first - inward] = d[b + first]; });
+          break;
       }
     }
   }
@@ -189,8 +290,9 @@ void fillCellGhosts(Field& f, const Boundaries& bc, CellGhostKind kind) {
   double* d = f.data().data();
   for (int a = 0; a < 3; ++a) {
     const int n = grid.cells[a];
+    const std::ptrdiff_t st = f.stride(a);
     if (bc.periodic(a)) {
-      forEachLine(f, a, [&](int, int, std::size_t base, std::ptrdiff_t st) {
+      forEachLine(f, a, [&](const int*, std::size_t base) {
         for (int m = 1; m <= g; ++m) {
           d[base - m * st] = d[base + (((n - m) % n + n) % n) * st];
           d[base + (n - 1 + m) * st] = d[base + ((m - 1) % n) * st];
@@ -212,13 +314,17 @@ void fillCellGhosts(Field& f, const Boundaries& bc, CellGhostKind kind) {
         dirichlet = true;
         value = side.scalarValue;
       }
-      forEachLine(f, a, [&](int, int, std::size_t base, std::ptrdiff_t st) {
-        auto at = [&](int k) -> double& { return d[base + (s == 0 ? k : n - 1 - k) * st]; };
-        for (int m = 1; m <= g; ++m) {
-          const double mirror = at(std::min(m - 1, n - 1));
-          at(-m) = dirichlet ? 2.0 * value - mirror : mirror;
-        }
-      });
+      const std::ptrdiff_t row0 = s == 0 ? 0 : (n - 1) * st, in = s == 0 ? st : -st;
+      if (dirichlet)
+        forEachLine(f, a, [&](const int*, std::size_t base) {
+          double* l = d + base + row0;
+          for (int m = 1; m <= g; ++m) l[-m * in] = 2.0 * value - l[std::min(m - 1, n - 1) * in];
+        });
+      else
+        forEachLine(f, a, [&](const int*, std::size_t base) {
+          double* l = d + base + row0;
+          for (int m = 1; m <= g; ++m) l[-m * in] = l[std::min(m - 1, n - 1) * in];
+        });
     }
   }
 }

@@ -55,6 +55,13 @@ double inletNormalVelocity(const Boundaries& bc, int axis, int side, const Carte
 /// Ghosts (and prescribed boundary faces) of velocity component `c` (face field along c).
 void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode);
 
+/// The part of fillVelocityGhosts(u, c, bc, Full) that the 7-point momentum stencil reads at the
+/// momentum unknowns: the first ghost layer of the interior grid lines (no edge or corner ghosts,
+/// no second layer) and the duplicate last face of a periodic normal axis. Non-periodic normal
+/// boundary faces are left alone (the solver keeps them). Same values as the full fill there;
+/// for iterations whose sweeps keep the boundary faces (Chebyshev sweeps), followed by a full fill.
+void fillVelocityStencilGhosts(Field& u, int c, const Boundaries& bc);
+
 /// Kinds of cell-centred ghost fill.
 /// PeriodicOnly: wrap-around ghosts of periodic axes only (fields read at momentum faces only:
 /// their non-periodic ghosts are never used).

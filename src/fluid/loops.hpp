@@ -43,6 +43,17 @@ inline void parallelFor(std::int64_t n, Body&& body) {
   }
 }
 
+/// parallelFor with a caller's threshold (grid lines below which the loop stays serial).
+template <class Body>
+inline void parallelForAbove(std::int64_t n, std::int64_t serialBelow, Body&& body) {
+  if (n < serialBelow || serialLoops()) {
+    for (std::int64_t i = 0; i < n; ++i) body(i);
+  } else {
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) body(i);
+  }
+}
+
 template <class Body>
 inline double parallelSum(std::int64_t n, Body&& body) {
   if (n < kSerialBelow || serialLoops()) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <omp.h>
+
 #include "fluid/loops.hpp"
 
 namespace gf::fluid {
@@ -13,6 +15,9 @@ constexpr int kPostSmooth = 2;
 constexpr std::size_t kCoarsestCells = 64;
 constexpr std::size_t kDenseCells = 256;  // coarsest levels up to this size are solved directly
 constexpr int kCoarsestSweeps = 40;
+// Multigrid levels are threaded from this many grid lines (a 32^3 level: 1024 lines, about 30 us
+// per half-sweep, enough to pay for a parallel region; the fluid loops' default is 2048).
+constexpr std::int64_t kLevelSerialBelow = 512;
 
 double dotProduct(const std::vector<double>& a, const std::vector<double>& b) {
   return parallelSumElements(static_cast<std::int64_t>(a.size()), [&](std::int64_t i) { return a[i] * b[i]; });
@@ -100,7 +105,6 @@ void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool,
   for (auto& L : levels_) {
     L.x.assign(L.cells(), 0.0);
     L.b.assign(L.cells(), 0.0);
-    L.r.assign(L.cells(), 0.0);
   }
   factorCoarsest();
   const std::size_t N = levels_[0].cells();
@@ -209,6 +213,27 @@ void MultigridPoisson::solveCoarsest(PoissonLevel& L) const {
 }
 
 void MultigridPoisson::buildDiagonal(PoissonLevel& L, const std::array<bool, 6>& dirichlet) const {
+  // Constant coefficients? (faces between two cells, wrap-around faces of periodic axes included)
+  L.constantT = true;
+  for (int a = 0; a < 3 && L.constantT; ++a) {
+    L.tConstant[a] = 0.0;
+    if (L.n[a] == 1) continue;  // no coupling along a
+    bool first = true;
+    for (int k = 0; k < L.n[2] + (a == 2) && L.constantT; ++k)
+      for (int j = 0; j < L.n[1] + (a == 1); ++j)
+        for (int i = 0; i < L.n[0] + (a == 0); ++i) {
+          const int idx[3] = {i, j, k};
+          if (!L.periodic[a] && (idx[a] == 0 || idx[a] == L.n[a])) continue;  // boundary faces
+          const double t = L.T[a][L.faceIndex(a, i, j, k)];
+          if (first) {
+            L.tConstant[a] = t;
+            first = false;
+          } else if (t != L.tConstant[a]) {
+            L.constantT = false;
+            break;
+          }
+        }
+  }
   L.invDiag.assign(L.cells(), 0.0);
   L.diag.assign(L.cells(), 0.0);
   L.redBlackSafe = true;
@@ -308,46 +333,105 @@ LineStencil lineStencil(const PoissonLevel& L, int j, int k, const double* zeros
 
 }  // namespace
 
+namespace {
+/// y = A x on grid line (j, k) of level L (x: the whole level, y: the line).
+/// Coefficients of one grid line: the level's arrays, or (CONSTANT) the level's constant per axis
+/// (0 for a missing neighbour line): the same values, so the same results, without the reads.
+template <bool CONSTANT>
+struct LineCoefficients {
+  const double* tS;
+  const double* tN;
+  const double* tB;
+  const double* tT;
+  const double* tx;
+  double cS = 0.0, cN = 0.0, cB = 0.0, cT = 0.0, cx = 0.0;
+  LineCoefficients(const PoissonLevel& L, const LineStencil& st, int j, int k, const double* zeros)
+      : tS(st.tS), tN(st.tN), tB(st.tB), tT(st.tT), tx(L.T[0].data() + L.faceIndex(0, 0, j, k)) {
+    if constexpr (CONSTANT) {
+      cS = st.tS == zeros ? 0.0 : L.tConstant[1];
+      cN = st.tN == zeros ? 0.0 : L.tConstant[1];
+      cB = st.tB == zeros ? 0.0 : L.tConstant[2];
+      cT = st.tT == zeros ? 0.0 : L.tConstant[2];
+      cx = L.tConstant[0];
+    }
+  }
+  double S(int i) const { return CONSTANT ? cS : tS[i]; }
+  double N(int i) const { return CONSTANT ? cN : tN[i]; }
+  double B(int i) const { return CONSTANT ? cB : tB[i]; }
+  double T(int i) const { return CONSTANT ? cT : tT[i]; }
+  /// x face i of the line (between cells i-1 and i); only read where it couples two cells.
+  double X(int i) const { return CONSTANT ? cx : tx[i]; }
+};
+
+template <bool CONSTANT>
+inline void applyLineImpl(const PoissonLevel& L, const double* xv, double* y, int j, int k, const double* zeros) {
+  const int nx = L.n[0], ny = L.n[1];
+  const std::size_t base = static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * k);
+  const double* x = xv + base;
+  const double* diag = L.diag.data() + base;
+  const LineStencil st = lineStencil(L, j, k, zeros);
+  const LineCoefficients<CONSTANT> t(L, st, j, k, zeros);
+  const bool perX = L.periodic[0] && nx > 1;
+  for (int i = 0; i < nx; ++i) {
+    const double off = t.S(i) * x[i + st.oS] + t.N(i) * x[i + st.oN] + t.B(i) * x[i + st.oB] +
+                       t.T(i) * x[i + st.oT] + (i > 0 ? t.X(i) * x[i - 1] : (perX ? t.X(i) * x[nx - 1] : 0.0)) +
+                       (i < nx - 1 ? t.X(i + 1) * x[i + 1] : (perX ? t.X(i + 1) * x[0] : 0.0));
+    y[i] = diag[i] * x[i] - off;
+  }
+}
+
+inline void applyLine(const PoissonLevel& L, const double* xv, double* y, int j, int k, const double* zeros) {
+  if (L.constantT) applyLineImpl<true>(L, xv, y, j, k, zeros);
+  else applyLineImpl<false>(L, xv, y, j, k, zeros);
+}
+}  // namespace
+
 void MultigridPoisson::applyLevel(const PoissonLevel& L, const std::vector<double>& xv, std::vector<double>& yv) const {
   const int nx = L.n[0], ny = L.n[1], nz = L.n[2];
-  const std::vector<double>& zeros = zeros_;
-  parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
+  parallelForAbove(static_cast<std::int64_t>(ny) * nz, kLevelSerialBelow, [&](std::int64_t line) {
     const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
-    const std::size_t base = static_cast<std::size_t>(nx) * line;
-    const double* x = xv.data() + base;
-    double* y = yv.data() + base;
-    const double* diag = L.diag.data() + base;
-    const double* Tx = L.T[0].data() + L.faceIndex(0, 0, j, k);
-    const LineStencil st = lineStencil(L, j, k, zeros.data());
-    const bool perX = L.periodic[0] && nx > 1;
-    for (int i = 0; i < nx; ++i) {
-      const double off = st.tS[i] * x[i + st.oS] + st.tN[i] * x[i + st.oN] + st.tB[i] * x[i + st.oB] +
-                         st.tT[i] * x[i + st.oT] + (i > 0 ? Tx[i] * x[i - 1] : (perX ? Tx[i] * x[nx - 1] : 0.0)) +
-                         (i < nx - 1 ? Tx[i + 1] * x[i + 1] : (perX ? Tx[i + 1] * x[0] : 0.0));
-      y[i] = diag[i] * x[i] - off;
-    }
+    applyLine(L, xv.data(), yv.data() + static_cast<std::size_t>(nx) * line, j, k, zeros_.data());
   });
 }
 
-// Relaxes the cells with (i+j+k) % 2 == colour on grid line (j, k).
-void MultigridPoisson::relaxLine(PoissonLevel& L, int j, int k, int colour) const {
+double MultigridPoisson::applyLevelDot(const PoissonLevel& L, const std::vector<double>& xv, std::vector<double>& yv) {
+  // Partial sums per grid line, added in line order: the same result for any thread count.
+  const int nx = L.n[0], ny = L.n[1], nz = L.n[2];
+  const auto lines = static_cast<std::int64_t>(ny) * nz;
+  lineSums_.resize(static_cast<std::size_t>(lines));
+  parallelForAbove(lines, kLevelSerialBelow, [&](std::int64_t line) {
+    const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
+    const std::size_t base = static_cast<std::size_t>(nx) * line;
+    double* y = yv.data() + base;
+    applyLine(L, xv.data(), y, j, k, zeros_.data());
+    const double* x = xv.data() + base;
+    lineSums_[static_cast<std::size_t>(line)] = serialSum4(nx, [&](std::int64_t i) { return x[i] * y[i]; });
+  });
+  double sum = 0.0;
+  for (double v : lineSums_) sum += v;
+  return sum;
+}
+
+namespace {
+template <bool CONSTANT>
+void relaxLineImpl(PoissonLevel& L, int j, int k, int colour, const double* zeros) {
   const int nx = L.n[0], ny = L.n[1];
   const std::size_t base = static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * k);
   double* x = L.x.data() + base;
   const double* b = L.b.data() + base;
   const double* inv = L.invDiag.data() + base;
-  const double* Tx = L.T[0].data() + L.faceIndex(0, 0, j, k);
-  const LineStencil st = lineStencil(L, j, k, zeros_.data());
+  const LineStencil st = lineStencil(L, j, k, zeros);
+  const LineCoefficients<CONSTANT> t(L, st, j, k, zeros);
   const bool perX = L.periodic[0] && nx > 1;
   auto yz = [&](int i) {
-    return st.tS[i] * x[i + st.oS] + st.tN[i] * x[i + st.oN] + st.tB[i] * x[i + st.oB] + st.tT[i] * x[i + st.oT];
+    return t.S(i) * x[i + st.oS] + t.N(i) * x[i + st.oN] + t.B(i) * x[i + st.oB] + t.T(i) * x[i + st.oT];
   };
   auto relaxEdge = [&](int i) {
     double s = b[i] + yz(i);
-    if (i > 0) s += Tx[i] * x[i - 1];
-    else if (perX) s += Tx[i] * x[nx - 1];
-    if (i < nx - 1) s += Tx[i + 1] * x[i + 1];
-    else if (perX) s += Tx[i + 1] * x[0];
+    if (i > 0) s += t.X(i) * x[i - 1];
+    else if (perX) s += t.X(i) * x[nx - 1];
+    if (i < nx - 1) s += t.X(i + 1) * x[i + 1];
+    else if (perX) s += t.X(i + 1) * x[0];
     x[i] = s * inv[i];
   };
   int i = (j + k + colour) & 1;
@@ -355,14 +439,21 @@ void MultigridPoisson::relaxLine(PoissonLevel& L, int j, int k, int colour) cons
     relaxEdge(0);
     i = 2;
   }
-  for (; i < nx - 1; i += 2) x[i] = (b[i] + yz(i) + Tx[i] * x[i - 1] + Tx[i + 1] * x[i + 1]) * inv[i];
+  for (; i < nx - 1; i += 2) x[i] = (b[i] + yz(i) + t.X(i) * x[i - 1] + t.X(i + 1) * x[i + 1]) * inv[i];
   if (i == nx - 1) relaxEdge(i);
+}
+}  // namespace
+
+// Relaxes the cells with (i+j+k) % 2 == colour on grid line (j, k).
+void MultigridPoisson::relaxLine(PoissonLevel& L, int j, int k, int colour) const {
+  if (L.constantT) relaxLineImpl<true>(L, j, k, colour, zeros_.data());
+  else relaxLineImpl<false>(L, j, k, colour, zeros_.data());
 }
 
 // One half-sweep of red-black Gauss-Seidel over the cells with (i+j+k) % 2 == colour.
 void MultigridPoisson::smoothColour(PoissonLevel& L, int colour) const {
   const int ny = L.n[1];
-  parallelFor(static_cast<std::int64_t>(ny) * L.n[2], [&](std::int64_t line) {
+  parallelForAbove(static_cast<std::int64_t>(ny) * L.n[2], kLevelSerialBelow, [&](std::int64_t line) {
     relaxLine(L, static_cast<int>(line % ny), static_cast<int>(line / ny), colour);
   });
 }
@@ -381,7 +472,7 @@ void MultigridPoisson::smoothPair(PoissonLevel& L, int first) const {
     smoothColour(L, second);
     return;
   }
-  int slabs = (lines >= kSerialBelow && !serialLoops()) ? gf::threadCount() : 1;
+  int slabs = (lines >= kLevelSerialBelow && !serialLoops()) ? gf::threadCount() : 1;
   slabs = std::min(slabs, nz / 2);
   auto plane = [&](int k, int colour) {
     for (int j = 0; j < ny; ++j) relaxLine(L, j, k, colour);
@@ -429,7 +520,14 @@ void MultigridPoisson::symmetricGaussSeidel(PoissonLevel& L) const {
 
 void MultigridPoisson::vcycle(int l) {
   PoissonLevel& L = levels_[l];
-  std::fill(L.x.begin(), L.x.end(), 0.0);
+  {
+    double* x = L.x.data();
+    const auto lines = static_cast<std::int64_t>(L.n[1]) * L.n[2];
+    const int nx = L.n[0];
+    parallelForAbove(lines, kLevelSerialBelow, [&](std::int64_t line) {
+      std::fill(x + nx * line, x + nx * (line + 1), 0.0);  // first touch by the thread that smooths it
+    });
+  }
   const bool coarsest = l + 1 == static_cast<int>(levels_.size());
   if (coarsest && !coarseCholesky_.empty()) {
     solveCoarsest(L);
@@ -443,31 +541,40 @@ void MultigridPoisson::vcycle(int l) {
   } else {
     for (int s = 0; s < kPreSmooth; ++s) smoothPair(L, 0);
   }
-  applyLevel(L, L.x, L.r);
   PoissonLevel& C = levels_[l + 1];
   const std::array<int, 3> f = factors_[l];
   const int nx = L.n[0], ny = L.n[1];
   const int cx = C.n[0], cy = C.n[1], cz = C.n[2];
-  // Restriction: sum of the children's residuals (volume-integrated equations).
-  parallelFor(static_cast<std::int64_t>(cy) * cz, [&](std::int64_t line) {
+  // Residual fused with the restriction (sum of the children's residuals: volume-integrated
+  // equations): the fine residual of each child line is computed into a per-thread line buffer
+  // and added to its coarse line, in the same order (dk, dj, di) as a separate pass would.
+  const std::size_t stride = static_cast<std::size_t>(nx) + 8;  // padding: no false sharing
+  if (lineBuffer_.size() < stride * static_cast<std::size_t>(gf::threadCount()))
+    lineBuffer_.resize(stride * static_cast<std::size_t>(gf::threadCount()));
+  parallelForAbove(static_cast<std::int64_t>(cy) * cz, kLevelSerialBelow, [&](std::int64_t line) {
     const int J = static_cast<int>(line % cy), K = static_cast<int>(line / cy);
-    for (int I = 0; I < cx; ++I) {
-      double s = 0.0;
-      const int dkEnd = std::min(f[2], L.n[2] - K * f[2]), djEnd = std::min(f[1], ny - J * f[1]),
-                diEnd = std::min(f[0], nx - I * f[0]);
-      for (int dk = 0; dk < dkEnd; ++dk)
-        for (int dj = 0; dj < djEnd; ++dj)
-          for (int di = 0; di < diEnd; ++di) {
-            const std::size_t c = static_cast<std::size_t>(I * f[0] + di) +
-                                  static_cast<std::size_t>(nx) * (J * f[1] + dj + static_cast<std::size_t>(ny) * (K * f[2] + dk));
-            s += L.b[c] - L.r[c];
+    double* r = lineBuffer_.data() + stride * static_cast<std::size_t>(omp_get_thread_num());
+    double* cb = C.b.data() + static_cast<std::size_t>(cx) * line;
+    std::fill(cb, cb + cx, 0.0);
+    const int dkEnd = std::min(f[2], L.n[2] - K * f[2]), djEnd = std::min(f[1], ny - J * f[1]);
+    for (int dk = 0; dk < dkEnd; ++dk)
+      for (int dj = 0; dj < djEnd; ++dj) {
+        const int j = J * f[1] + dj, k = K * f[2] + dk;
+        applyLine(L, L.x.data(), r, j, k, zeros_.data());
+        const double* b = L.b.data() + static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * k);
+        if (f[0] == 2) {
+          for (int I = 0; I < cx; ++I) {
+            cb[I] += b[2 * I] - r[2 * I];
+            if (2 * I + 1 < nx) cb[I] += b[2 * I + 1] - r[2 * I + 1];
           }
-      C.b[static_cast<std::size_t>(I) + static_cast<std::size_t>(cx) * line] = s;
-    }
+        } else {
+          for (int I = 0; I < cx; ++I) cb[I] += b[I] - r[I];
+        }
+      }
   });
   vcycle(l + 1);
   // Prolongation: piecewise constant, added to the children.
-  parallelFor(static_cast<std::int64_t>(L.n[1]) * L.n[2], [&](std::int64_t line) {
+  parallelForAbove(static_cast<std::int64_t>(L.n[1]) * L.n[2], kLevelSerialBelow, [&](std::int64_t line) {
     const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
     const std::size_t cbase = static_cast<std::size_t>(cx) * (j / f[1] + static_cast<std::size_t>(cy) * (k / f[2]));
     const std::size_t base = static_cast<std::size_t>(nx) * line;
@@ -480,12 +587,25 @@ void MultigridPoisson::vcycle(int l) {
   }
 }
 
-void MultigridPoisson::precondition(const std::vector<double>& r, std::vector<double>& z) {
+double MultigridPoisson::precondition() {
+  // z_ = one V-cycle applied to r_ (without copies: r_ and z_ are swapped in and out of the fine
+  // level), projected to zero mean when singular, fused with the dot product r_ . z_.
   PoissonLevel& L = levels_[0];
-  std::copy(r.begin(), r.end(), L.b.begin());
+  L.b.swap(r_);
   vcycle(0);
-  std::copy(L.x.begin(), L.x.end(), z.begin());
-  if (singular_) removeMean(z);
+  L.b.swap(r_);
+  L.x.swap(z_);
+  const auto n = static_cast<std::int64_t>(z_.size());
+  double* z = z_.data();
+  const double* r = r_.data();
+  if (!singular_ || activeCells_ == 0.0)
+    return parallelSumElements(n, [&](std::int64_t i) { return r[i] * z[i]; });
+  const double* inv = L.invDiag.data();
+  const double mean = parallelSumElements(n, [&](std::int64_t i) { return inv[i] > 0.0 ? z[i] : 0.0; }) / activeCells_;
+  return parallelSumElements(n, [&](std::int64_t i) {
+    z[i] = inv[i] > 0.0 ? z[i] - mean : 0.0;
+    return r[i] * z[i];
+  });
 }
 
 void MultigridPoisson::removeMean(std::vector<double>& v) const {
@@ -535,24 +655,25 @@ PoissonResult MultigridPoisson::solveInternal(std::vector<double>& x, const std:
   double rnorm = std::sqrt(dotProduct(r_, r_));
   result.relativeResidual = rnorm / bnorm;
   if (result.relativeResidual <= tol) return result;
-  precondition(r_, z_);
+  double rz = precondition();
   p_ = z_;
-  double rz = dotProduct(r_, z_);
   for (int it = 1; it <= maxIterations; ++it) {
-    applyLevel(levels_[0], p_, q_);
-    const double pq = dotProduct(p_, q_);
+    const double pq = applyLevelDot(levels_[0], p_, q_);
     if (pq <= 0.0) break;
     const double alpha = rz / pq;
-    parallelForElements(n, [&](std::int64_t i) {
-      x[i] += alpha * p_[i];
-      r_[i] -= alpha * q_[i];
-    });
-    rnorm = std::sqrt(dotProduct(r_, r_));
+    double* xd = x.data();
+    double* rd = r_.data();
+    const double* pd = p_.data();
+    const double* qd = q_.data();
+    rnorm = std::sqrt(parallelSumElements(n, [&](std::int64_t i) {
+      xd[i] += alpha * pd[i];
+      rd[i] -= alpha * qd[i];
+      return rd[i] * rd[i];
+    }));
     result.iterations = it;
     result.relativeResidual = rnorm / bnorm;
     if (result.relativeResidual <= tol) break;
-    precondition(r_, z_);
-    const double rzNew = dotProduct(r_, z_);
+    const double rzNew = precondition();
     const double beta = rzNew / rz;
     rz = rzNew;
     parallelForElements(n, [&](std::int64_t i) { p_[i] = z_[i] + beta * p_[i]; });

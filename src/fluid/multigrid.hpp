@@ -26,8 +26,12 @@ struct PoissonLevel {
   std::array<std::vector<double>, 3> T;  // face transmissibilities, (n_a + 1) along axis a
   std::vector<double> invDiag;           // 1 / diagonal, 0 for cells without any coupling
   std::vector<double> diag;              // diagonal
-  std::vector<double> x, b, r;           // solution, right-hand side, residual
+  std::vector<double> x, b;              // solution, right-hand side
   bool redBlackSafe = true;              // colouring is a proper 2-colouring (no odd periodic axis)
+  /// Every face that couples two cells along axis a has T = tConstant[a] (uniform coefficients,
+  /// e.g. single-phase flow): the smoother and the operator then read no coefficient arrays.
+  bool constantT = false;
+  std::array<double, 3> tConstant{0.0, 0.0, 0.0};
 
   std::size_t cells() const { return static_cast<std::size_t>(n[0]) * n[1] * n[2]; }
   /// Index of face (i, j, k) normal to axis (axis -1: cell (i, j, k)).
@@ -73,7 +77,10 @@ class MultigridPoisson {
   void factorCoarsest();
   void solveCoarsest(PoissonLevel& L) const;
   void vcycle(int level);
-  void precondition(const std::vector<double>& r, std::vector<double>& z);
+  /// z_ = M^-1 r_ (one V-cycle, zero mean when singular); returns r_ . z_.
+  double precondition();
+  /// y = A x on level L; returns x . y (per-line partial sums in line order).
+  double applyLevelDot(const PoissonLevel& L, const std::vector<double>& x, std::vector<double>& y);
   void removeMean(std::vector<double>& v) const;
 
   std::vector<PoissonLevel> levels_;
@@ -82,6 +89,8 @@ class MultigridPoisson {
   bool singular_ = true;
   double activeCells_ = 0.0;  // fine cells with a non-zero diagonal
   std::vector<double> r_, z_, p_, q_;
+  std::vector<double> lineSums_;    // per-line partial sums of applyLevelDot
+  std::vector<double> lineBuffer_;  // per-thread residual line of the fused restriction
   // Internally the longest axis is the fastest-varying one (a 2 x 30 x 90 bed is stored as
   // 90 x 2 x 30: long grid lines, little per-line overhead); perm_[internal axis] = caller's axis,
   // callerCell_[internal cell] = the caller's index of that cell (empty when perm_ is the identity).

@@ -2,7 +2,9 @@
 //   div( eps a / (rho gamma0 eps/dt + K) grad phi ) = div(eps u*) + (eps - eps_old)/dt
 //   u = u* - a / (rho gamma0 eps/dt + K) grad phi,   p += phi       (a = eps for model A, 1 for B)
 // so that the corrected velocity satisfies the discrete continuity equation of seed 000 eq. 5.3.
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "fluid/loops.hpp"
 #include "fluid/solver.hpp"
@@ -31,11 +33,41 @@ double Solver::divergenceAt(int i, int j, int k, double dt) const {
 }
 
 double Solver::maxDivergence() const {
+  // divergenceAt() line by line (same arithmetic); a maximum does not depend on the order.
+  const int nx = grid_.cells[0], ny = grid_.cells[1], nz = grid_.cells[2];
+  const int dims = twoD_ ? 2 : 3;
+  const double* E = coupling_.voidFraction.data().data();
+  const double* Eo = coupling_.voidFractionOld.data().data();
+  const double dt = lastDt_;
+  std::vector<double> lineMax(static_cast<std::size_t>(ny) * nz, 0.0);
+  parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
+    const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
+    const std::size_t e0 = p_.index(0, j, k);
+    const double* Ud[3];
+    std::ptrdiff_t su[3], se[3];
+    for (int a = 0; a < dims; ++a) {
+      Ud[a] = u_[a].data().data() + u_[a].index(0, j, k);
+      su[a] = u_[a].stride(a);
+      se[a] = p_.stride(a);
+    }
+    const std::uint8_t* B = blocked_.data() + e0;
+    double m = 0.0;
+    for (int i = 0; i < nx; ++i) {
+      if (B[i]) continue;
+      const std::size_t cc = e0 + i;
+      double div = 0.0;
+      for (int a = 0; a < dims; ++a) {
+        const double flux_hi = 0.5 * (E[cc] + E[cc + se[a]]) * Ud[a][i + su[a]];
+        const double flux_lo = 0.5 * (E[cc] + E[cc - se[a]]) * Ud[a][i];
+        div += (flux_hi - flux_lo) / grid_.spacing[a];
+      }
+      if (dt > 0.0) div += (E[cc] - Eo[cc]) / dt;
+      m = std::max(m, std::abs(div));
+    }
+    lineMax[static_cast<std::size_t>(line)] = m;
+  });
   double m = 0.0;
-  for (int k = 0; k < grid_.cells[2]; ++k)
-    for (int j = 0; j < grid_.cells[1]; ++j)
-      for (int i = 0; i < grid_.cells[0]; ++i)
-        if (!blocked(i, j, k)) m = std::max(m, std::abs(divergenceAt(i, j, k, lastDt_)));
+  for (double v : lineMax) m = std::max(m, v);
   return m;
 }
 
@@ -128,10 +160,15 @@ void Solver::project(double dt, double g0) {
       if (a >= dims) continue;
       const double areaOverH = grid_.cellVolume() / (grid_.spacing[a] * grid_.spacing[a]);
       for (int s = 0; s < 2; ++s) dirichlet[2 * a + s] = bc_.at(a, s).type == BoundaryType::PressureOutlet;
+      const Field& u = u_[a];
+      const int n = grid_.cells[a];
       parallelFor(static_cast<std::int64_t>(fn[1]) * fn[2], [&](std::int64_t line) {
         const int j = static_cast<int>(line % fn[1]), k = static_cast<int>(line / fn[1]);
+        const std::uint8_t* M = unknown_[a].data() + u.index(0, j, k);
         for (int i = 0; i < fn[0]; ++i) {
-          if (!coupled(a, i, j, k)) continue;
+          // coupled(): a momentum unknown, or a boundary face (periodic duplicate, pressure outlet).
+          const int along = a == 0 ? i : (a == 1 ? j : k);
+          if (!M[i] && !((along == 0 || along == n) && coupled(a, i, j, k))) continue;
           const std::size_t cc = p_.index(i, j, k);
           const double epsF = avg(E, cc, p_.stride(a));
           T[a][static_cast<std::size_t>(i) + fn[0] * static_cast<std::size_t>(line)] =
@@ -147,23 +184,30 @@ void Solver::project(double dt, double g0) {
   const double V = grid_.cellVolume();
   parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
     const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
+    const std::size_t e0 = p_.index(0, j, k);
+    const double* Ud[3];
+    std::ptrdiff_t su[3], se[3];
+    double area[3];
+    for (int a = 0; a < dims; ++a) {
+      Ud[a] = u_[a].data().data() + u_[a].index(0, j, k);
+      su[a] = u_[a].stride(a);
+      se[a] = p_.stride(a);
+      area[a] = V / grid_.spacing[a];
+    }
+    double* rhs = poissonRhs_.data() + static_cast<std::size_t>(nx) * line;
+    double* guess = poissonX_.data() + static_cast<std::size_t>(nx) * line;
+    const std::uint8_t* B = blocked_.data() + e0;
     for (int i = 0; i < nx; ++i) {
-      const std::size_t id = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * line;
-      if (blocked(i, j, k)) poissonX_[id] = 0.0;  // otherwise: previous increment as initial guess
-      if (blocked(i, j, k)) {
-        poissonRhs_[id] = 0.0;
+      if (B[i]) {
+        guess[i] = 0.0;  // otherwise: previous increment as initial guess
+        rhs[i] = 0.0;
         continue;
       }
-      const std::size_t cc = p_.index(i, j, k);
+      const std::size_t cc = e0 + i;
       double net = V * (E[cc] - Eo[cc]) / dt;
-      for (int a = 0; a < dims; ++a) {
-        const Field& u = u_[a];
-        const std::size_t f = u.index(i, j, k);
-        const std::ptrdiff_t su = u.stride(a), se = p_.stride(a);
-        const double area = V / grid_.spacing[a];
-        net += area * (avg(E, cc + se, se) * u.data()[f + su] - avg(E, cc, se) * u.data()[f]);
-      }
-      poissonRhs_[id] = -net;
+      for (int a = 0; a < dims; ++a)
+        net += area[a] * (avg(E, cc + se[a], se[a]) * Ud[a][i + su[a]] - avg(E, cc, se[a]) * Ud[a][i]);
+      rhs[i] = -net;
     }
   });
   // Pressure outlets: phi_b = p_out - p^n_b with p^n_b the interior pressure extrapolated
@@ -212,14 +256,29 @@ void Solver::project(double dt, double g0) {
     const auto& pts = u.points();
     const std::ptrdiff_t se = p_.stride(a);
     const double invH = 1.0 / grid_.spacing[a];
+    const int n = grid_.cells[a];
+    const bool periodic = bc_.periodic(a);
+    // eps = 1, K = 0: the same coefficient everywhere (no division per face).
+    const double uniformCoeff = 1.0 / timeCoeff;
     parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
       const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
+      const std::size_t f0 = u.index(0, j, k), e0 = p_.index(0, j, k);
+      double* U = u.data().data() + f0;
+      const std::uint8_t* M = unknown_[a].data() + f0;
+      // Faces off the momentum unknowns take part only on a boundary (pressure outlets); the
+      // last face of a periodic axis duplicates face 0.
+      auto correctedFace = [&](int i) {
+        if (M[i]) return true;
+        const int along = a == 0 ? i : (a == 1 ? j : k);
+        if (along != 0 && along != n) return false;
+        if (along == n && periodic) return false;
+        return coupled(a, i, j, k);
+      };
       for (int i = 0; i < pts[0]; ++i) {
-        const int idx[3] = {i, j, k};
-        if (idx[a] == grid_.cells[a] && bc_.periodic(a)) continue;  // duplicate of face 0
-        if (!coupled(a, i, j, k)) continue;
-        const std::size_t cc = p_.index(i, j, k);
-        u(i, j, k) -= correctionCoeff(a, cc) * (Phi[cc] - Phi[cc - se]) * invH;
+        if (!correctedFace(i)) continue;
+        const std::size_t cc = e0 + i;
+        const double coeff = uniformCoupling_ ? uniformCoeff : correctionCoeff(a, cc);
+        U[i] -= coeff * (Phi[cc] - Phi[cc - se]) * invH;
       }
     });
     fillVelocityGhosts(u, a, bc_, GhostMode::Full);

@@ -1,9 +1,12 @@
 #include "fluid/solver.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -28,6 +31,7 @@ Solver::Solver(Params& root, const Domain& domain, const Vec3& gravity) : domain
     const auto st = static_cast<Staggering>(c + 1);
     u_[c] = Field(grid_, st);
     uOld_[c] = Field(grid_, st);
+    guessError_[c] = Field(grid_, st);
     conv_[c] = Field(grid_, st);
     convOld_[c] = Field(grid_, st);
     rhs_[c] = Field(grid_, st);
@@ -43,7 +47,7 @@ Solver::Solver(Params& root, const Domain& domain, const Vec3& gravity) : domain
   buildUnknownMasks();
   std::size_t maxSize = 0;
   for (int c = 0; c < 3; ++c) maxSize = std::max(maxSize, u_[c].data().size());
-  for (auto& v : krylov_) v.assign(maxSize, 0.0);  // r, rhat, p, v, s, t, 1/diag, u^n
+  for (auto& v : krylov_) v.assign(maxSize, 0.0);  // r, rhat, p, v, s, t, 1/diag
   poissonRhs_.assign(grid_.interiorCellCount(), 0.0);
   poissonX_.assign(grid_.interiorCellCount(), 0.0);
 
@@ -235,6 +239,7 @@ void Solver::setVelocity(const std::function<Vec3(const Vec3&)>& f) {
     }
     fillVelocityGhosts(u, c, bc_, GhostMode::Full);
     uOld_[c] = u;
+    std::fill(guessError_[c].data().begin(), guessError_[c].data().end(), 0.0);
   }
 }
 
@@ -263,10 +268,26 @@ void Solver::step(double dt) {
   const auto& eps = coupling_.voidFraction.data();
   const auto& epsOld = coupling_.voidFractionOld.data();
   const auto& K = coupling_.dragCoefficient.data();
+  // eps = eps_old = 1 and K = 0 everywhere (ghosts included)? Scanned in fixed chunks, each
+  // stopping at its first non-uniform value (a boolean: the same answer for any thread count).
+  constexpr std::size_t kChunk = 16384;
+  const std::size_t chunks = (eps.size() + kChunk - 1) / kChunk;
+  std::vector<std::uint8_t> chunkUniform(chunks, 1);
+  parallelForAbove(static_cast<std::int64_t>(chunks), 8, [&](std::int64_t q) {
+    const std::size_t end = std::min(eps.size(), (static_cast<std::size_t>(q) + 1) * kChunk);
+    for (std::size_t i = static_cast<std::size_t>(q) * kChunk; i < end; ++i)
+      if (!(eps[i] == 1.0 && epsOld[i] == 1.0 && K[i] == 0.0)) {
+        chunkUniform[static_cast<std::size_t>(q)] = 0;
+        break;
+      }
+  });
   bool uniform = true;
-  for (std::size_t i = 0; i < eps.size() && uniform; ++i) uniform = eps[i] == 1.0 && epsOld[i] == 1.0 && K[i] == 0.0;
+  for (std::uint8_t u : chunkUniform) uniform = uniform && u != 0;
   uniformCoupling_ = uniform;
-  if (steps_ == 0) epsOlder_ = coupling_.voidFractionOld;
+  if (steps_ == 0) {
+    epsOlder_ = coupling_.voidFractionOld;
+    epsOlderOnes_ = uniform;
+  }
   // Variable-step BDF2 (BDF1 on the first step) and matching extrapolation of convection.
   double g0 = 1.0, g1 = 1.0, g2 = 0.0, e1 = 1.0, e2 = 0.0;
   if (steps_ > 0 && dtPrev_ > 0.0) {
@@ -300,7 +321,11 @@ void Solver::step(double dt) {
   }
   if (driveMode_ == DrivingMode::FlowRate) controlFlowRate(dt, g0);
   for (int c = 0; c < 3; ++c) convOld_[c].data().swap(conv_[c].data());
-  epsOlder_ = coupling_.voidFractionOld;
+  // eps_older <- eps_old (a copy of the whole field: skipped while both are 1 everywhere)
+  if (!(uniform && epsOlderOnes_)) {
+    epsOlder_ = coupling_.voidFractionOld;
+    epsOlderOnes_ = uniform;
+  }
   dtPrev_ = dt;
   lastDt_ = dt;
   time_ += dt;
@@ -433,7 +458,7 @@ void Solver::checkHealth(long long step, double time) const {
 }
 
 void Solver::save(BinaryWriter& out) const {
-  out.putString("fluid-v1");
+  out.putString("fluid-v2");
   out.put(grid_.cells);
   out.put(time_);
   out.put(dtPrev_);
@@ -443,6 +468,7 @@ void Solver::save(BinaryWriter& out) const {
   for (int c = 0; c < 3; ++c) {
     out.putVector(u_[c].data());
     out.putVector(uOld_[c].data());
+    out.putVector(guessError_[c].data());
     out.putVector(convOld_[c].data());
     out.putVector(coupling_.forceDensity[c].data());
     out.putVector(coupling_.particleVelocity[c].data());
@@ -457,7 +483,7 @@ void Solver::save(BinaryWriter& out) const {
 }
 
 void Solver::load(BinaryReader& in) {
-  if (in.getString() != "fluid-v1") throw CheckpointError("fluid checkpoint: unknown section tag");
+  if (in.getString() != "fluid-v2") throw CheckpointError("fluid checkpoint: unknown section tag");
   if (in.get<std::array<int, 3>>() != grid_.cells)
     throw CheckpointError("fluid checkpoint: grid size differs from the case file");
   time_ = in.get<double>();
@@ -474,12 +500,14 @@ void Solver::load(BinaryReader& in) {
   for (int c = 0; c < 3; ++c) {
     readInto(u_[c]);
     readInto(uOld_[c]);
+    readInto(guessError_[c]);
     readInto(convOld_[c]);
     readInto(coupling_.forceDensity[c]);
     readInto(coupling_.particleVelocity[c]);
   }
   readInto(p_);
   readInto(epsOlder_);
+  epsOlderOnes_ = false;
   readInto(scalar_);
   readInto(coupling_.voidFraction);
   readInto(coupling_.voidFractionOld);

@@ -102,7 +102,7 @@ class Solver {
   void buildUnknownMasks();
   void fillAllGhosts();
   // momentum.cpp
-  void computeConvection(Field out[3]) const;
+  void computeConvection(Field out[3]);
   void assembleMomentum(int c, double dt, double gamma0, double gamma1, double gamma2, double ext1, double ext2);
   /// predictor: start from 2 u^n - u^{n-1} and move u^n to uOld_; else (corrector) start from u.
   int solveHelmholtz(int c, double dt, double gamma0, bool predictor = true);
@@ -156,18 +156,21 @@ class Solver {
 
   CouplingFields coupling_;
   Field u_[3], uOld_[3];        // u^n (after step: u^{n+1}) and u^{n-1}
+  Field guessError_[3];         // predicted velocity minus its initial guess in the last step (momentum.cpp)
   Field conv_[3], convOld_[3];  // convective term N^n, N^{n-1}
   Field rhs_[3];
   Field p_, phi_, epsOlder_, scalar_;
+  Field cellDivergence_;  // div u per cell for the eps-varying viscous stress (momentum.cpp)
   std::vector<std::uint8_t> blocked_;     // per cell-field point
   std::vector<std::uint8_t> unknown_[3];  // per face point: solved by the momentum equation
   std::vector<std::int64_t> unknownList_[3];
-  std::vector<double> krylov_[8];  // r, rhat, p, v, s, t, 1/diag, u^n
+  std::vector<double> krylov_[7];  // r, rhat, p, v, s, t, 1/diag
   Field precY_[3], precZ_[3];
   std::vector<double> linePartial_;  // per-line partial sums (deterministic reductions)
   MultigridPoisson poisson_;
   double poissonKey_ = -1.0;  // rho gamma0 / dt of the current multigrid setup (-1: rebuild)
   bool uniformCoupling_ = true;
+  bool epsOlderOnes_ = true;  // epsOlder_ is 1 everywhere (ghosts included)
   std::vector<double> poissonRhs_, poissonX_, firstIncrement_;
 
   double time_ = 0.0, dtPrev_ = 0.0, lastDt_ = 0.0;

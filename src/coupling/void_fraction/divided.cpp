@@ -111,30 +111,42 @@ class DividedVoidFraction final : public VoidFractionScheme {
     // origin) / h) exceeds lo iff the scaled coordinate is >= lo + 1. The scaled coordinate grows
     // monotonically with u (rounding is monotone), so the points in the lower cell are those of
     // the first s_a sorted coordinates: the 8 cell counts are a table entry.
-    int mapped[3][2], split[3];
+    const int g = t.grid.ghosts;
+    const std::size_t ex = static_cast<std::size_t>(t.grid.cells[0] + 2 * g);
+    const std::size_t exy = ex * static_cast<std::size_t>(t.grid.cells[1] + 2 * g);
+    const std::size_t axisStride[3] = {1, ex, exy};
+    std::size_t offset[3][2];  // flat(i, j, k) = offset[0][.] + offset[1][.] + offset[2][.] + ghost shift
+    bool folded[3];            // both cells of the axis map to the same cell (wall fold, one-cell periodic axis)
+    int split[3];
     for (int a = 0; a < 3; ++a) {
       const double o = t.grid.origin[a], inv = t.inverseSpacing[a], xa = x[a];
+      // (the scaled coordinates are compared as computed, not stored and reloaded: that round
+      // trip stalled on store forwarding)
       const int lo = floorToInt((xa + r * unit.value[a][0] - o) * inv);
       const double upper = lo + 1.0;
-      int s = 0;
-      for (int v = 0; v < kValues; ++v) s += (xa + r * unit.value[a][v] - o) * inv < upper ? 1 : 0;
+      int s = 1;  // the lowest coordinate lies below lo + 1 by the definition of lo
+      for (int v = 1; v < kValues; ++v) s += (xa + r * unit.value[a][v] - o) * inv < upper ? 1 : 0;
       split[a] = s;
-      mapped[a][0] = t.mapIndex(lo, a);
-      mapped[a][1] = t.mapIndex(lo + 1, a);
+      const int m0 = t.mapIndex(lo, a), m1 = t.mapIndex(lo + 1, a);
+      folded[a] = m0 == m1;
+      offset[a][0] = static_cast<std::size_t>(m0) * axisStride[a];
+      offset[a][1] = static_cast<std::size_t>(m1) * axisStride[a];
     }
+    const std::size_t shift = static_cast<std::size_t>(g) * (exy + ex + 1);
     int count[8];
     for (int b = 0; b < 8; ++b) count[b] = unit.count[split[0]][split[1]][split[2]][b];
     // cells folded / wrapped onto the same cell (walls, one-cell periodic axes): merge the bins
     for (int a = 0; a < 3; ++a)
-      if (mapped[a][0] == mapped[a][1])
+      if (folded[a])
         for (int b = 0; b < 8; ++b)
           if (b & (1 << a)) {
             count[b & ~(1 << a)] += count[b];
             count[b] = 0;
           }
+    // the non-empty cells in block order; branch-free (which cells are empty is hard to predict),
+    // the stencil has capacity 8
     for (int b = 0; b < 8; ++b)
-      if (count[b] > 0)
-        w.append(t.flat(mapped[0][b & 1], mapped[1][(b >> 1) & 1], mapped[2][(b >> 2) & 1]),
+      w.appendIf(count[b] > 0, offset[0][b & 1] + offset[1][(b >> 1) & 1] + offset[2][(b >> 2) & 1] + shift,
                  count[b] * (1.0 / kPoints));
   }
 };
