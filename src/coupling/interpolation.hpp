@@ -25,17 +25,28 @@ struct TrilinearWeights {
   double weight[8];
 };
 
+/// Position of x along axis a in cell-centre units: the lower of the two surrounding cell centres
+/// (unmapped index) and the fraction towards the upper one. Clamped to the first/last centre in
+/// wall directions (see the file comment).
+struct AxisPosition {
+  int lower;
+  double fraction;
+};
+inline AxisPosition axisPosition(const GridTopology& t, const Vec3& x, int a) {
+  double s = (x[a] - t.grid.origin[a]) * t.inverseSpacing[a] - 0.5;
+  if (!t.periodic[a]) s = std::min(std::max(s, 0.0), static_cast<double>(t.grid.cells[a] - 1));
+  const int f = floorToInt(s);
+  return {f, s - f};
+}
+
 inline TrilinearWeights trilinearWeights(const GridTopology& t, const Vec3& x) {
   int lo[3], hi[3];
   double frac[3];
   for (int a = 0; a < 3; ++a) {
-    const int n = t.grid.cells[a];
-    double s = (x[a] - t.grid.origin[a]) * t.inverseSpacing[a] - 0.5;
-    if (!t.periodic[a]) s = std::min(std::max(s, 0.0), static_cast<double>(n - 1));
-    const int f = floorToInt(s);
-    frac[a] = s - f;
-    lo[a] = t.mapIndex(f, a);
-    hi[a] = t.mapIndex(f + 1, a);
+    const AxisPosition q = axisPosition(t, x, a);
+    frac[a] = q.fraction;
+    lo[a] = t.mapIndex(q.lower, a);
+    hi[a] = t.mapIndex(q.lower + 1, a);
   }
   TrilinearWeights w{};
   int m = 0;
@@ -129,13 +140,10 @@ inline void sampleTrilinear(const GridTopology& t, const Vec3& x, const double* 
                                     static_cast<std::ptrdiff_t>(t.grid.cells[0] + 2 * t.grid.ghosts) *
                                         (t.grid.cells[1] + 2 * t.grid.ghosts)};
   for (int a = 0; a < 3; ++a) {
-    const int n = t.grid.cells[a];
-    double s = (x[a] - t.grid.origin[a]) * t.inverseSpacing[a] - 0.5;
-    if (!t.periodic[a]) s = std::min(std::max(s, 0.0), static_cast<double>(n - 1));
-    const int f = floorToInt(s);
-    frac[a] = s - f;
-    lo[a] = t.mapIndex(f, a);
-    step[a] = (t.mapIndex(f + 1, a) - lo[a]) * stride[a];
+    const AxisPosition q = axisPosition(t, x, a);
+    frac[a] = q.fraction;
+    lo[a] = t.mapIndex(q.lower, a);
+    step[a] = (t.mapIndex(q.lower + 1, a) - lo[a]) * stride[a];
   }
   const double* base = buffer + t.flat(lo[0], lo[1], lo[2]) * channels;
   double sum[Channels > 0 ? Channels : 1];
