@@ -275,18 +275,22 @@ struct BlockSweep {
       b.dy[m] = d.y;
       b.dz[m] = d.z;
       b.rj[m] = rj;
+      // History travels with the entry; the list keeps zero (pairs not in contact lose their
+      // history; the touching ones get theirs back in scatterEntries).
+      const Vec3 hk = h[k];
+      b.hx[m] = hk.x;
+      b.hy[m] = hk.y;
+      b.hz[m] = hk.z;
+      h[k] = Vec3{};
       m += !(dist2 >= rsum * rsum) ? 1u : 0u;  // touching: keep the entry
     }
     const std::uint32_t rowPair = static_cast<std::uint32_t>(type[i]) * types;
     bool uniform = b.uniform;
     std::uint32_t firstPair = start > 0 ? b.pairIndex[0] : 0;
     for (std::uint32_t e = start; e < m; ++e) {
-      const std::uint32_t j = b.partner[e], k = b.entry[e];
-      const Vec3 hk = h[k];
-      b.hx[e] = hk.x;
-      b.hy[e] = hk.y;
-      b.hz[e] = hk.z;
+      const std::uint32_t j = b.partner[e];
       if constexpr (R == RollingLaw::Epsd) {
+        const std::uint32_t k = b.entry[e];
         const Vec3 rh = rollingHistory[k];
         b.rhx[e] = rh.x;
         b.rhy[e] = rh.y;
@@ -318,8 +322,6 @@ struct BlockSweep {
     }
     b.uniform = uniform;
     b.size = m;
-    // Pairs not in contact lose their history; the touching ones get theirs back in scatterEntries.
-    for (std::uint32_t k = from; k < to; ++k) h[k] = Vec3{};
     if constexpr (R == RollingLaw::Epsd)
       for (std::uint32_t k = from; k < to; ++k) rollingHistory[k] = Vec3{};
   }
