@@ -254,10 +254,14 @@ void Coupler::alignPreviousSlip(const dem::ParticleSet& particles) {
 
 template <InterpolationMode Mode, bool StandardChannels, class Law>
 void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet& particles) {
-  // One pass per particle: interpolate every fluid field at once (interleaved cell buffer), slip,
-  // Re, drag law (inlined), forces, and the per-particle exchange data for fillFluidSources.
+  // Per particle: interpolate every fluid field at once (interleaved cell buffer), slip, Re, drag
+  // law (inlined), forces, and the per-particle exchange data for fillFluidSources.
   // StandardChannels: the channel layout of the default forces (u, eps, grad p, div tau; no
   // vorticity) fixed at compile time.
+  // Blocks of particles, each in three short passes (sampling; slip and Re; law and forces): the
+  // long latency chains of one particle (sqrt, divisions, the law) then overlap with those of
+  // the next ones instead of waiting behind a long loop body. Same operations per particle as
+  // one pass (bit-identical).
   const ForceSwitches& w = settings_.forces;
   const double k3 = settings_.coarseGraining.fluidForceScale();
   const double dPrimFactor = 1.0 / settings_.coarseGraining.factor;
@@ -269,47 +273,66 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
             cW = StandardChannels ? -1 : vorticityChannel_;
   const double* samples = samples_.data();
   const Vec3 buoyancy = w.buoyancy ? force::buoyancy(rho, 1.0, gravity_) : Vec3{};  // per volume
-  forEachIndex(static_cast<std::int64_t>(particles.size()), 64, [&](std::int64_t ip) {
-    const auto p = static_cast<std::size_t>(ip);
-    double s[13];
-    if constexpr (Mode == InterpolationMode::Trilinear) {
-      sampleTrilinear<StandardChannels ? kStandardChannels : 0>(topology_, particles.position[p], samples, channels, s);
-    } else {
-      SampleWeights sw;
-      sampleWeights<Mode>(topology_, stencils_, p, particles.position[p], sw);
-      sampleInterleaved(sw, samples, channels, s);
+  constexpr int kBlock = 32;
+  const auto n = static_cast<std::int64_t>(particles.size());
+  const std::int64_t blocks = (n + kBlock - 1) / kBlock;
+  forEachIndex(blocks, 64 * kBlock, [&](std::int64_t block) {
+    const std::size_t begin = static_cast<std::size_t>(block) * kBlock;
+    const int count = static_cast<int>(std::min<std::int64_t>(kBlock, n - static_cast<std::int64_t>(begin)));
+    double s[kBlock][13];
+    for (int q = 0; q < count; ++q) {
+      const std::size_t p = begin + q;
+      if constexpr (Mode == InterpolationMode::Trilinear) {
+        sampleTrilinear<StandardChannels ? kStandardChannels : 0>(topology_, particles.position[p], samples, channels,
+                                                                  s[q]);
+      } else {
+        SampleWeights sw;
+        sampleWeights<Mode>(topology_, stencils_, p, particles.position[p], sw);
+        sampleInterleaved(sw, samples, channels, s[q]);
+      }
     }
-    const Vec3 uf{s[0], s[1], s[2]};
-    const double eps = std::clamp(s[3], epsFloor, 1.0);
-    const Vec3 slip = uf - particles.velocity[p];
-    const double d = 2.0 * particles.radius[p];
-    const double dPrim = d * dPrimFactor;
-    const double volume = force::sphereVolume(d);  // parcel volume = k^3 primary volumes
-    const double re = rho * norm(slip) * dPrim / mu;
-    const double beta = w.drag ? k3 * particleDragCoefficient(mu, dPrim, law(re, eps)) : 0.0;
-    const Vec3 fDrag = force::drag(beta, slip);
-    Vec3 exchangedOther{}, particleOnly{};
-    if (cP >= 0) (modelB ? exchangedOther : particleOnly) += force::pressureGradient(volume, {s[cP], s[cP + 1], s[cP + 2]});
-    if (cT >= 0) (modelB ? exchangedOther : particleOnly) += force::viscousStress(volume, {s[cT], s[cT + 1], s[cT + 2]});
-    if (w.buoyancy) particleOnly += volume * buoyancy;
-    if (w.virtualMass) {
-      const Vec3 previous = std::isnan(previousSlip_[p].x) ? slip : previousSlip_[p];
-      exchangedOther += force::virtualMass(w.virtualMassCoefficient, rho, volume, slip, previous, fluid.timeStep);
+    double eps[kBlock], re[kBlock];
+    for (int q = 0; q < count; ++q) {
+      const std::size_t p = begin + q;
+      const Vec3 uf{s[q][0], s[q][1], s[q][2]};
+      eps[q] = std::clamp(s[q][3], epsFloor, 1.0);
+      const Vec3 slip = uf - particles.velocity[p];
+      const double dPrim = 2.0 * particles.radius[p] * dPrimFactor;
+      re[q] = rho * norm(slip) * dPrim / mu;
+      fluidVelocityAtParticle_[p] = uf;
+      slip_[p] = slip;
     }
-    Vec3 torque{};
-    if (cW >= 0) {
-      const Vec3 vorticity{s[cW], s[cW + 1], s[cW + 2]};
-      const Vec3 relOmega = force::relativeRotation(particles.angularVelocity[p], vorticity);
-      if (w.saffmanMeiLift) exchangedOther += k3 * force::saffmanMeiLift(rho, mu, dPrim, slip, vorticity);
-      if (w.magnusLift) exchangedOther += k3 * force::magnusLift(rho, dPrim, relOmega, slip);
-      if (w.fluidTorque) torque = k3 * force::rotationalTorque(mu, dPrim, relOmega);
+    for (int q = 0; q < count; ++q) {
+      const std::size_t p = begin + q;
+      const Vec3 slip = slip_[p];
+      const double d = 2.0 * particles.radius[p];
+      const double dPrim = d * dPrimFactor;
+      const double volume = force::sphereVolume(d);  // parcel volume = k^3 primary volumes
+      const double beta = w.drag ? k3 * particleDragCoefficient(mu, dPrim, law(re[q], eps[q])) : 0.0;
+      const Vec3 fDrag = force::drag(beta, slip);
+      Vec3 exchangedOther{}, particleOnly{};
+      if (cP >= 0)
+        (modelB ? exchangedOther : particleOnly) += force::pressureGradient(volume, {s[q][cP], s[q][cP + 1], s[q][cP + 2]});
+      if (cT >= 0)
+        (modelB ? exchangedOther : particleOnly) += force::viscousStress(volume, {s[q][cT], s[q][cT + 1], s[q][cT + 2]});
+      if (w.buoyancy) particleOnly += volume * buoyancy;
+      if (w.virtualMass) {
+        const Vec3 previous = std::isnan(previousSlip_[p].x) ? slip : previousSlip_[p];
+        exchangedOther += force::virtualMass(w.virtualMassCoefficient, rho, volume, slip, previous, fluid.timeStep);
+      }
+      Vec3 torque{};
+      if (cW >= 0) {
+        const Vec3 vorticity{s[q][cW], s[q][cW + 1], s[q][cW + 2]};
+        const Vec3 relOmega = force::relativeRotation(particles.angularVelocity[p], vorticity);
+        if (w.saffmanMeiLift) exchangedOther += k3 * force::saffmanMeiLift(rho, mu, dPrim, slip, vorticity);
+        if (w.magnusLift) exchangedOther += k3 * force::magnusLift(rho, dPrim, relOmega, slip);
+        if (w.fluidTorque) torque = k3 * force::rotationalTorque(mu, dPrim, relOmega);
+      }
+      beta_[p] = beta;
+      otherExchangedForce_[p] = exchangedOther;
+      particles.externalForce[p] = fDrag + exchangedOther + particleOnly;
+      particles.externalTorque[p] = torque;
     }
-    fluidVelocityAtParticle_[p] = uf;
-    slip_[p] = slip;
-    beta_[p] = beta;
-    otherExchangedForce_[p] = exchangedOther;
-    particles.externalForce[p] = fDrag + exchangedOther + particleOnly;
-    particles.externalTorque[p] = torque;
   });
 }
 

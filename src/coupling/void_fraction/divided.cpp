@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
+#include <vector>
 
 #include "coupling/void_fraction/void_fraction_scheme.hpp"
 #include "coupling/loops.hpp"
@@ -77,6 +78,66 @@ struct UnitPoints {
 
 const UnitPoints unit;  // built at start-up, read-only afterwards
 
+#if defined(__GNUC__)
+using Double2 = double __attribute__((vector_size(16)));
+using Mask2 = long long __attribute__((vector_size(16)));
+#endif
+
+/// Along one axis: the cell lo of the lowest point, and the number of points (of the 9 sorted
+/// unit coordinates) in cell lo; the others lie in lo + 1 (block path, points span < 1 cell).
+/// The scaled coordinate of point v is (x + r u_v - origin) / h exactly as cellOf computes it;
+/// it grows monotonically with u (rounding is monotone), so the points in the lower cell are the
+/// first `split` sorted coordinates.
+struct AxisSplit {
+  int lo;
+  int split;
+};
+inline AxisSplit splitAxis(double x, double r, const double (&value)[kValues], double origin, double inv) {
+  const int lo = floorToInt((x + r * value[0] - origin) * inv);
+  const double upper = lo + 1.0;
+#if defined(__GNUC__)
+  // the 8 upper coordinates two at a time (same operations, same rounding as the scalar form)
+  Mask2 below{0, 0};
+  for (int v = 1; v < kValues; v += 2) {
+    const Double2 u{value[v], value[v + 1]};
+    below += (x + r * u - origin) * inv < upper;  // -1 where true
+  }
+  return {lo, static_cast<int>(1 - below[0] - below[1])};
+#else
+  int s = 1;  // the lowest coordinate lies below lo + 1 by the definition of lo
+  for (int v = 1; v < kValues; ++v) s += (x + r * value[v] - origin) * inv < upper ? 1 : 0;
+  return {lo, s};
+#endif
+}
+
+/// Flat-index offset of a cell index along one axis (mapIndex times the axis stride), tabulated
+/// for the indices a block can touch; mapIndex itself outside the table.
+class AxisOffsets {
+ public:
+  AxisOffsets(const GridTopology& t, int axis, std::size_t stride) : t_(&t), axis_(axis), stride_(stride) {
+    const int n = t.grid.cells[axis];
+    for (int i = kFirst; i <= n + 1; ++i) offset_.push_back(static_cast<std::size_t>(t.mapIndex(i, axis)) * stride);
+  }
+  /// offsets of cells lo and lo + 1
+  void pair(int lo, std::size_t& lower, std::size_t& upper) const {
+    const auto k = static_cast<std::size_t>(lo - kFirst);
+    if (k + 1 < offset_.size()) {
+      lower = offset_[k];
+      upper = offset_[k + 1];
+    } else {
+      lower = static_cast<std::size_t>(t_->mapIndex(lo, axis_)) * stride_;
+      upper = static_cast<std::size_t>(t_->mapIndex(lo + 1, axis_)) * stride_;
+    }
+  }
+
+ private:
+  static constexpr int kFirst = -2;
+  const GridTopology* t_;
+  int axis_;
+  std::size_t stride_;
+  std::vector<std::size_t> offset_;
+};
+
 class DividedVoidFraction final : public VoidFractionScheme {
  public:
   explicit DividedVoidFraction(Params&) {}
@@ -89,14 +150,14 @@ class DividedVoidFraction final : public VoidFractionScheme {
     const double span = 2.0 * unit.reach * maxRadius(particles);
     const bool block = span < 0.999 * std::min({g.spacing.x, g.spacing.y, g.spacing.z});
     stencils.resize(particles.size(), block ? 8 : kPoints);
+    if (block) {
+      buildBlocks(particles, topology, stencils);
+      return;
+    }
     forEachIndex(static_cast<std::int64_t>(particles.size()), 29, [&](std::int64_t p) {
       StencilWriter w(stencils, static_cast<std::size_t>(p));
       const Vec3 x = particles.position[p];
       const double r = particles.radius[p];
-      if (block) {
-        addBlock(topology, x, r, w);
-        return;
-      }
       for (int m = 0; m < kPoints; ++m) {
         const auto c = topology.cellOf(x + r * Vec3{unit.c[0][m], unit.c[1][m], unit.c[2][m]});
         w.add(topology.flat(c[0], c[1], c[2]), 1.0 / kPoints);
@@ -106,48 +167,41 @@ class DividedVoidFraction final : public VoidFractionScheme {
   }
 
  private:
-  static void addBlock(const GridTopology& t, const Vec3& x, double r, StencilWriter& w) {
-    // Along axis a the points lie in cells lo and lo + 1; cellOf(x + r u)[a] = floor((x + r u -
-    // origin) / h) exceeds lo iff the scaled coordinate is >= lo + 1. The scaled coordinate grows
-    // monotonically with u (rounding is monotone), so the points in the lower cell are those of
-    // the first s_a sorted coordinates: the 8 cell counts are a table entry.
+  static void buildBlocks(const dem::ParticleSet& particles, const GridTopology& t, ParticleStencils& stencils) {
     const int g = t.grid.ghosts;
     const std::size_t ex = static_cast<std::size_t>(t.grid.cells[0] + 2 * g);
     const std::size_t exy = ex * static_cast<std::size_t>(t.grid.cells[1] + 2 * g);
-    const std::size_t axisStride[3] = {1, ex, exy};
-    std::size_t offset[3][2];  // flat(i, j, k) = offset[0][.] + offset[1][.] + offset[2][.] + ghost shift
-    bool folded[3];            // both cells of the axis map to the same cell (wall fold, one-cell periodic axis)
+    const AxisOffsets axisOffsets[3] = {{t, 0, 1}, {t, 1, ex}, {t, 2, exy}};
+    const std::size_t shift = static_cast<std::size_t>(g) * (exy + ex + 1);  // flat(0, 0, 0)
+    double weightOf[kPoints + 1];  // weight of a cell holding c points
+    for (int c = 0; c <= kPoints; ++c) weightOf[c] = c * (1.0 / kPoints);
+    forEachIndex(static_cast<std::int64_t>(particles.size()), 29, [&](std::int64_t p) {
+      StencilWriter w(stencils, static_cast<std::size_t>(p));
+      addBlock(t, axisOffsets, shift, weightOf, particles.position[p], particles.radius[p], w);
+    });
+  }
+
+  static void addBlock(const GridTopology& t, const AxisOffsets (&axisOffsets)[3], std::size_t shift,
+                       const double (&weightOf)[kPoints + 1], const Vec3& x, double r, StencilWriter& w) {
+    std::size_t offset[3][2];  // flat(i, j, k) = offset[0][.] + offset[1][.] + offset[2][.] + shift
     int split[3];
+    int folded = 0;  // axes whose two cells map to the same cell (wall fold, one-cell periodic axis)
     for (int a = 0; a < 3; ++a) {
-      const double o = t.grid.origin[a], inv = t.inverseSpacing[a], xa = x[a];
-      // (the scaled coordinates are compared as computed, not stored and reloaded: that round
-      // trip stalled on store forwarding)
-      const int lo = floorToInt((xa + r * unit.value[a][0] - o) * inv);
-      const double upper = lo + 1.0;
-      int s = 1;  // the lowest coordinate lies below lo + 1 by the definition of lo
-      for (int v = 1; v < kValues; ++v) s += (xa + r * unit.value[a][v] - o) * inv < upper ? 1 : 0;
-      split[a] = s;
-      const int m0 = t.mapIndex(lo, a), m1 = t.mapIndex(lo + 1, a);
-      folded[a] = m0 == m1;
-      offset[a][0] = static_cast<std::size_t>(m0) * axisStride[a];
-      offset[a][1] = static_cast<std::size_t>(m1) * axisStride[a];
+      const AxisSplit s = splitAxis(x[a], r, unit.value[a], t.grid.origin[a], t.inverseSpacing[a]);
+      split[a] = s.split;
+      axisOffsets[a].pair(s.lo, offset[a][0], offset[a][1]);
+      folded |= offset[a][0] == offset[a][1] ? 1 << a : 0;
     }
-    const std::size_t shift = static_cast<std::size_t>(g) * (exy + ex + 1);
-    int count[8];
-    for (int b = 0; b < 8; ++b) count[b] = unit.count[split[0]][split[1]][split[2]][b];
-    // cells folded / wrapped onto the same cell (walls, one-cell periodic axes): merge the bins
-    for (int a = 0; a < 3; ++a)
-      if (folded[a])
-        for (int b = 0; b < 8; ++b)
-          if (b & (1 << a)) {
-            count[b & ~(1 << a)] += count[b];
-            count[b] = 0;
-          }
+    // the 8 cell counts of the table; cells folded onto the same cell merged into the lower bin
+    // (branch-free: which axes fold is hard to predict)
+    const std::uint8_t* table = unit.count[split[0]][split[1]][split[2]];
+    int count[8] = {};
+    for (int b = 0; b < 8; ++b) count[b & ~folded] += table[b];
     // the non-empty cells in block order; branch-free (which cells are empty is hard to predict),
     // the stencil has capacity 8
     for (int b = 0; b < 8; ++b)
       w.appendIf(count[b] > 0, offset[0][b & 1] + offset[1][(b >> 1) & 1] + offset[2][(b >> 2) & 1] + shift,
-                 count[b] * (1.0 / kPoints));
+                 weightOf[count[b]]);
   }
 };
 
