@@ -155,8 +155,39 @@ void BM_CouplingBubblingBed(benchmark::State& state) {
       static_cast<double>(BubblingBed::kCount), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+void BM_CouplingBubblingBedPhase(benchmark::State& state) {
+  // the parts of the bed's coupling step: 0 = forces (computeParticleForces), 1 = void fraction
+  // alone (stencils and eps, no exchange pending), 2 = void fraction with the fused exchange
+  // deposit + fluid sources (computeVoidFraction + fillFluidSources after the forces)
+  BubblingBed bed;
+  Params p = Params::loadString("coupling:\n  drag_law: gidaspow\n  void_fraction: divided\n", "bench.yaml");
+  coupling::Coupler c(p, bed.grid, {false, false, false}, Vec3{0, 0, -9.81});
+  const auto view = bed.view();
+  c.computeVoidFraction(bed.particles, bed.fields);
+  c.computeParticleForces(view, bed.fields, bed.particles);
+  const int phase = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    if (phase == 0) {
+      c.computeParticleForces(view, bed.fields, bed.particles);
+    } else if (phase == 1) {
+      c.computeVoidFraction(bed.particles, bed.fields);
+    } else {
+      state.PauseTiming();
+      c.computeParticleForces(view, bed.fields, bed.particles);
+      state.ResumeTiming();
+      c.computeVoidFraction(bed.particles, bed.fields);
+      c.fillFluidSources(bed.particles, bed.fields);
+    }
+  }
+  const char* names[] = {"forces", "void_fraction", "void_fraction+sources"};
+  state.SetLabel(names[phase]);
+  state.counters["ns_per_particle_step"] = benchmark::Counter(
+      static_cast<double>(BubblingBed::kCount), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 }  // namespace
 
+BENCHMARK(BM_CouplingBubblingBedPhase)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CouplingBubblingBed)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CouplingVoidFraction)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CouplingFullStep)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -275,10 +275,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   const Vec3 buoyancy = w.buoyancy ? force::buoyancy(rho, 1.0, gravity_) : Vec3{};  // per volume
   constexpr int kBlock = 32;
   const auto n = static_cast<std::int64_t>(particles.size());
-  const std::int64_t blocks = (n + kBlock - 1) / kBlock;
-  forEachIndex(blocks, 64 * kBlock, [&](std::int64_t block) {
-    const std::size_t begin = static_cast<std::size_t>(block) * kBlock;
-    const int count = static_cast<int>(std::min<std::int64_t>(kBlock, n - static_cast<std::int64_t>(begin)));
+  auto forceBlock = [&](std::size_t begin, int count, std::array<double, 4>& sum) {
     double s[kBlock][13];
     for (int q = 0; q < count; ++q) {
       const std::size_t p = begin + q;
@@ -332,8 +329,18 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       otherExchangedForce_[p] = exchangedOther;
       particles.externalForce[p] = fDrag + exchangedOther + particleOnly;
       particles.externalTorque[p] = torque;
+      const Vec3 exchanged = fDrag + exchangedOther;
+      sum[0] += exchanged.x, sum[1] += exchanged.y, sum[2] += exchanged.z;
+      sum[3] += norm(exchanged);
     }
+  };
+  // the particle side of the momentum balance (updateMomentumBalance) summed on the way, per
+  // thread block in particle order as sumsOverIndices would
+  particleForceSums_ = sumsOverRanges<4>(n, [&](std::int64_t begin, std::int64_t end, std::array<double, 4>& sum) {
+    for (std::int64_t p = begin; p < end; p += kBlock)
+      forceBlock(static_cast<std::size_t>(p), static_cast<int>(std::min<std::int64_t>(kBlock, end - p)), sum);
   });
+  particleForceSumsValid_ = true;
 }
 
 void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields& fields,
@@ -399,6 +406,7 @@ void Coupler::realignToParticles(const dem::ParticleSet& particles) {
   otherExchangedForce_ = std::move(other);
   slip_ = std::move(slip);
   beta_ = std::move(beta);
+  particleForceSumsValid_ = false;  // particles gone or new: sum the realigned forces
   previousSlip_ = slip_;
   previousId_ = particles.id;
 }
@@ -507,12 +515,16 @@ void Coupler::smoothExchange(CouplingFields& fields, bool implicit) const {
 
 void Coupler::updateMomentumBalance(const CouplingFields& fields, bool implicit) {
   // Newton's third law: particles' exchanged forces + fluid sources (explicit - K (u - u_p)) = 0.
+  // the particle side as summed by the force pass (same terms, same order), unless the particle
+  // set was realigned since
   const std::array<double, 4> sums =
-      sumsOverIndices<4>(static_cast<std::int64_t>(beta_.size()), [&](std::int64_t p, std::array<double, 4>& sum) {
-        const Vec3 f = force::drag(beta_[p], slip_[p]) + otherExchangedForce_[p];
-        sum[0] += f.x, sum[1] += f.y, sum[2] += f.z;
-        sum[3] += norm(f);
-      });
+      particleForceSumsValid_
+          ? particleForceSums_
+          : sumsOverIndices<4>(static_cast<std::int64_t>(beta_.size()), [&](std::int64_t p, std::array<double, 4>& sum) {
+              const Vec3 f = force::drag(beta_[p], slip_[p]) + otherExchangedForce_[p];
+              sum[0] += f.x, sum[1] += f.y, sum[2] += f.z;
+              sum[3] += norm(f);
+            });
   const Vec3 onParticles{sums[0], sums[1], sums[2]};
   Vec3 onFluid{};
   exchangedForceScale_ = sums[3];

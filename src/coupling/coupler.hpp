@@ -161,6 +161,9 @@ class Coupler {
   // forces computed, their exchange not yet filled; their exchange deposited by computeVoidFraction
   bool exchangePending_ = false, exchangeDeposited_ = false;
   double exchangedForceScale_ = 0.0;
+  // sum over particles of the exchanged force (x, y, z) and of its magnitude, from the force pass
+  std::array<double, 4> particleForceSums_{};
+  bool particleForceSumsValid_ = false;
 };
 
 }  // namespace gf::coupling

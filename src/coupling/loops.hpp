@@ -61,4 +61,31 @@ inline std::array<double, N> sumsOverIndices(std::int64_t n, Body&& body) {
   return total;
 }
 
+/// The same N sums with the thread's whole block handed over at once: body(begin, end, sums) adds
+/// the terms of indices [begin, end) in index order (the body may work through its block in
+/// pieces). Same blocks, same order, hence the same bits as sumsOverIndices.
+template <int N, class Body>
+inline std::array<double, N> sumsOverRanges(std::int64_t n, Body&& body) {
+  std::array<double, N> total{};
+  const int threads = n < kMinParallelWork ? 1 : omp_get_max_threads();
+  if (threads == 1) {
+    body(std::int64_t{0}, n, total);
+    return total;
+  }
+  std::vector<std::array<double, N>> partial(threads, std::array<double, N>{});
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num(), team = omp_get_num_threads();
+    const std::int64_t chunk = n / team, extra = n % team;
+    const std::int64_t begin = t * chunk + std::min<std::int64_t>(t, extra);
+    const std::int64_t end = begin + chunk + (t < extra ? 1 : 0);
+    std::array<double, N> local{};
+    body(begin, end, local);
+    partial[t] = local;
+  }
+  for (const auto& part : partial)
+    for (int c = 0; c < N; ++c) total[c] += part[c];
+  return total;
+}
+
 }  // namespace gf::coupling

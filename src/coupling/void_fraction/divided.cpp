@@ -52,6 +52,7 @@ struct UnitPoints {
   double c[3][kPoints];
   double value[3][kValues];
   std::uint8_t count[kValues + 1][kValues + 1][kValues + 1][8] = {};
+  std::uint64_t packedCount[kValues + 1][kValues + 1][kValues + 1];  // the 8 counts, byte b = count[b]
   double reach = 0.0;  // largest |coordinate|
   UnitPoints() {
     const auto pts = unitSatellitePoints();
@@ -73,6 +74,13 @@ struct UnitPoints {
             const int b = (index[0][m] >= sx ? 1 : 0) | (index[1][m] >= sy ? 2 : 0) | (index[2][m] >= sz ? 4 : 0);
             ++count[sx][sy][sz][b];
           }
+    for (int sx = 0; sx <= kValues; ++sx)
+      for (int sy = 0; sy <= kValues; ++sy)
+        for (int sz = 0; sz <= kValues; ++sz) {
+          std::uint64_t packed = 0;
+          for (int b = 0; b < 8; ++b) packed |= static_cast<std::uint64_t>(count[sx][sy][sz][b]) << (8 * b);
+          packedCount[sx][sy][sz] = packed;
+        }
   }
 };
 
@@ -184,24 +192,28 @@ class DividedVoidFraction final : public VoidFractionScheme {
   static void addBlock(const GridTopology& t, const AxisOffsets (&axisOffsets)[3], std::size_t shift,
                        const double (&weightOf)[kPoints + 1], const Vec3& x, double r, StencilWriter& w) {
     std::size_t offset[3][2];  // flat(i, j, k) = offset[0][.] + offset[1][.] + offset[2][.] + shift
-    int split[3];
-    int folded = 0;  // axes whose two cells map to the same cell (wall fold, one-cell periodic axis)
+    const AxisSplit sx = splitAxis(x.x, r, unit.value[0], t.grid.origin.x, t.inverseSpacing.x);
+    const AxisSplit sy = splitAxis(x.y, r, unit.value[1], t.grid.origin.y, t.inverseSpacing.y);
+    const AxisSplit sz = splitAxis(x.z, r, unit.value[2], t.grid.origin.z, t.inverseSpacing.z);
+    axisOffsets[0].pair(sx.lo, offset[0][0], offset[0][1]);
+    axisOffsets[1].pair(sy.lo, offset[1][0], offset[1][1]);
+    axisOffsets[2].pair(sz.lo, offset[2][0], offset[2][1]);
+    // the 8 cell counts of the table, one byte each (byte b: cell bit0 x + bit1 y + bit2 z)
+    std::uint64_t counts = unit.packedCount[sx.split][sy.split][sz.split];
+    // axes whose two cells map to the same cell (wall fold, one-cell periodic axis): add the upper
+    // bytes onto the lower ones (branch-free, in registers: which axes fold is hard to predict)
+    constexpr std::uint64_t lowerHalf[3] = {0x00FF00FF00FF00FFull, 0x0000FFFF0000FFFFull, 0x00000000FFFFFFFFull};
     for (int a = 0; a < 3; ++a) {
-      const AxisSplit s = splitAxis(x[a], r, unit.value[a], t.grid.origin[a], t.inverseSpacing[a]);
-      split[a] = s.split;
-      axisOffsets[a].pair(s.lo, offset[a][0], offset[a][1]);
-      folded |= offset[a][0] == offset[a][1] ? 1 << a : 0;
+      const std::uint64_t fold = offset[a][0] == offset[a][1] ? ~0ull : 0ull;
+      const std::uint64_t keep = lowerHalf[a] | ~fold;
+      counts = (counts & keep) + ((counts >> (8 << a)) & lowerHalf[a] & fold);
     }
-    // the 8 cell counts of the table; cells folded onto the same cell merged into the lower bin
-    // (branch-free: which axes fold is hard to predict)
-    const std::uint8_t* table = unit.count[split[0]][split[1]][split[2]];
-    int count[8] = {};
-    for (int b = 0; b < 8; ++b) count[b & ~folded] += table[b];
     // the non-empty cells in block order; branch-free (which cells are empty is hard to predict),
     // the stencil has capacity 8
-    for (int b = 0; b < 8; ++b)
-      w.appendIf(count[b] > 0, offset[0][b & 1] + offset[1][(b >> 1) & 1] + offset[2][(b >> 2) & 1] + shift,
-                 weightOf[count[b]]);
+    for (int b = 0; b < 8; ++b) {
+      const auto c = static_cast<int>((counts >> (8 * b)) & 0xFF);
+      w.appendIf(c > 0, offset[0][b & 1] + offset[1][(b >> 1) & 1] + offset[2][(b >> 2) & 1] + shift, weightOf[c]);
+    }
   }
 };
 
