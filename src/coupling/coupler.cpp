@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <omp.h>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -111,10 +112,21 @@ void Coupler::fillGhosts(Field& f) const {
 
 void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFields& fields) {
   fields.voidFractionOld.data() = fields.voidFraction.data();
-  scheme_->buildStencils(particles, topology_, stencils_);
+  // the stencils are built piece by piece inside the deposit, each piece just before it is
+  // deposited (read back from cache); the particle volume is summed there too (per thread block
+  // in particle order, as sumsOverIndices would)
+  scheme_->beginStencils(particles, topology_, stencils_);
   stencilsReady_ = true;
   const std::size_t n = particles.size();
   const std::size_t cells = solidFraction_.data().size();
+  auto particleVolume = [&](std::size_t p) { return force::sphereVolume(2.0 * particles.radius[p]); };
+  volumeSums_.assign(static_cast<std::size_t>(omp_get_max_threads()), 0.0);
+  auto buildAndSum = [&](int thread, std::size_t begin, std::size_t end) {
+    scheme_->buildStencilRange(particles, topology_, stencils_, begin, end);
+    double sum = volumeSums_[thread];
+    for (std::size_t p = begin; p < end; ++p) sum += particleVolume(p);
+    volumeSums_[thread] = sum;
+  };
   // In the order of Simulation::advance (forces, DEM steps, void fraction, fluid sources) the
   // exchange of the pending forces goes with the same stencils: one deposit pass for the volume
   // and the exchange channels (each channel summed exactly as by its own deposit), kept for
@@ -123,30 +135,37 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   exchangeDeposited_ = false;
   if (exchangePending_ && previousId_.size() == beta_.size()) realignToParticles(particles);
   const bool fuse = exchangePending_ && beta_.size() == n;
-  auto particleVolume = [&](std::size_t p) { return force::sphereVolume(2.0 * particles.radius[p]); };
   const double* volume = nullptr;
   std::size_t volumeStride = 1;
   if (fuse && implicit) {
-    volume = depositChannels<1 + kImplicitExchangeChannels>(stencils_, cells, deposit_, [&](std::size_t p, auto& v) {
-                v[0] = particleVolume(p);
-                exchangeValues<true>(p, v + 1);
-              }).data();
+    volume = depositChannels<1 + kImplicitExchangeChannels>(
+                 stencils_, cells, deposit_,
+                 [&](std::size_t p, auto& v) {
+                   v[0] = particleVolume(p);
+                   exchangeValues<true>(p, v + 1);
+                 },
+                 buildAndSum)
+                 .data();
     volumeStride = 1 + kImplicitExchangeChannels;
   } else if (fuse) {
-    volume = depositChannels<1 + kExplicitExchangeChannels>(stencils_, cells, deposit_, [&](std::size_t p, auto& v) {
-                v[0] = particleVolume(p);
-                exchangeValues<false>(p, v + 1);
-              }).data();
+    volume = depositChannels<1 + kExplicitExchangeChannels>(
+                 stencils_, cells, deposit_,
+                 [&](std::size_t p, auto& v) {
+                   v[0] = particleVolume(p);
+                   exchangeValues<false>(p, v + 1);
+                 },
+                 buildAndSum)
+                 .data();
     volumeStride = 1 + kExplicitExchangeChannels;
   } else {
-    volume = depositChannels<1>(stencils_, cells, deposit_,
-                                [&](std::size_t p, double (&v)[1]) { v[0] = particleVolume(p); })
+    volume = depositChannels<1>(
+                 stencils_, cells, deposit_, [&](std::size_t p, double (&v)[1]) { v[0] = particleVolume(p); },
+                 buildAndSum)
                  .data();
   }
   exchangeDeposited_ = fuse;
-  particleVolume_ = sumsOverIndices<1>(static_cast<std::int64_t>(n), [&](std::int64_t p, std::array<double, 1>& sum) {
-                      sum[0] += particleVolume(static_cast<std::size_t>(p));
-                    })[0];
+  particleVolume_ = 0.0;
+  for (double sum : volumeSums_) particleVolume_ += sum;
   Field& solid = solidFraction_;
   const auto& c = topology_.grid.cells;
   const double cellVolume = topology_.grid.cellVolume();
@@ -273,15 +292,16 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
             cW = StandardChannels ? -1 : vorticityChannel_;
   const double* samples = samples_.data();
   const Vec3 buoyancy = w.buoyancy ? force::buoyancy(rho, 1.0, gravity_) : Vec3{};  // per volume
+  const TrilinearSampler sampler(topology_);
   constexpr int kBlock = 32;
   const auto n = static_cast<std::int64_t>(particles.size());
-  auto forceBlock = [&](std::size_t begin, int count, std::array<double, 4>& sum) {
+  auto forceBlock = [&, rho, mu, epsFloor, dPrimFactor, k3](std::size_t begin, int count, std::array<double, 4>& sums) {
+    double sum[4] = {sums[0], sums[1], sums[2], sums[3]};  // in registers, not through the reference
     double s[kBlock][13];
     for (int q = 0; q < count; ++q) {
       const std::size_t p = begin + q;
       if constexpr (Mode == InterpolationMode::Trilinear) {
-        sampleTrilinear<StandardChannels ? kStandardChannels : 0>(topology_, particles.position[p], samples, channels,
-                                                                  s[q]);
+        sampler.sample<StandardChannels ? kStandardChannels : 0>(particles.position[p], samples, channels, s[q]);
       } else {
         SampleWeights sw;
         sampleWeights<Mode>(topology_, stencils_, p, particles.position[p], sw);
@@ -333,6 +353,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       sum[0] += exchanged.x, sum[1] += exchanged.y, sum[2] += exchanged.z;
       sum[3] += norm(exchanged);
     }
+    for (int c = 0; c < 4; ++c) sums[c] = sum[c];
   };
   // the particle side of the momentum balance (updateMomentumBalance) summed on the way, per
   // thread block in particle order as sumsOverIndices would

@@ -163,6 +163,7 @@ class Coupler {
   double exchangedForceScale_ = 0.0;
   // sum over particles of the exchanged force (x, y, z) and of its magnitude, from the force pass
   std::array<double, 4> particleForceSums_{};
+  std::vector<double> volumeSums_;  // per thread, computeVoidFraction
   bool particleForceSumsValid_ = false;
 };
 

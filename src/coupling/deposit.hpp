@@ -30,11 +30,16 @@ struct DepositBuffers {
   std::vector<std::array<std::size_t, 2>> runs;
 };
 
+inline constexpr std::int64_t kDepositPiece = 256;  // particles per prepare call
+
 /// values(p, double (&v)[C]) writes the C values of particle p. Returns the interleaved sums over
 /// `cells` flat cells (over b.runs if set; valid until the next deposit with the same buffers).
-template <int C, class Values>
+/// prepare(thread, begin, end) runs on the depositing thread (0-based index in the team) just
+/// before particles [begin, end) are deposited, pieces of kDepositPiece particles in particle
+/// order per thread: it may build their stencils there (read back from cache) or sum over them.
+template <int C, class Values, class Prepare>
 const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_t cells, DepositBuffers& b,
-                                           Values&& values) {
+                                           Values&& values, Prepare&& prepare) {
   const auto n = static_cast<std::int64_t>(s.size());
   const std::size_t size = cells * C;
   b.merged.resize(size);
@@ -46,22 +51,26 @@ const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_
     for (std::int64_t r = 0; r < runCount; ++r)
       std::fill(sum + runs[r][0] * C, sum + (runs[r][0] + runs[r][1]) * C, 0.0);
   };
-  auto accumulate = [&](std::int64_t begin, std::int64_t end, double* sum) {
-    for (std::int64_t p = begin; p < end; ++p) {
-      double v[C];
-      values(static_cast<std::size_t>(p), v);
-      const std::size_t base = static_cast<std::size_t>(p) * s.capacity;
-      const int count = s.count[p];
-      for (int e = 0; e < count; ++e) {
-        double* target = sum + s.cell[base + e] * C;
-        const double w = s.weight[base + e];
-        for (int ch = 0; ch < C; ++ch) target[ch] += w * v[ch];
+  auto accumulate = [&](int thread, std::int64_t begin, std::int64_t end, double* sum) {
+    for (std::int64_t piece = begin; piece < end; piece += kDepositPiece) {
+      const std::int64_t pieceEnd = std::min(end, piece + kDepositPiece);
+      prepare(thread, static_cast<std::size_t>(piece), static_cast<std::size_t>(pieceEnd));
+      for (std::int64_t p = piece; p < pieceEnd; ++p) {
+        double v[C];
+        values(static_cast<std::size_t>(p), v);
+        const std::size_t base = static_cast<std::size_t>(p) * s.capacity;
+        const int count = s.count[p];
+        for (int e = 0; e < count; ++e) {
+          double* target = sum + s.cell[base + e] * C;
+          const double w = s.weight[base + e];
+          for (int ch = 0; ch < C; ++ch) target[ch] += w * v[ch];
+        }
       }
     }
   };
   if (threads == 1) {
     zero(b.merged.data());
-    accumulate(0, n, b.merged.data());
+    accumulate(0, 0, n, b.merged.data());
     return b.merged;
   }
   if (static_cast<int>(b.perThread.size()) < threads) b.perThread.resize(threads);
@@ -77,7 +86,7 @@ const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_
     // the static block of thread t (as schedule(static) without chunk would give it)
     const std::int64_t chunk = n / team, extra = n % team;
     const std::int64_t begin = t * chunk + std::min<std::int64_t>(t, extra);
-    accumulate(begin, begin + chunk + (t < extra ? 1 : 0), buf.data());
+    accumulate(t, begin, begin + chunk + (t < extra ? 1 : 0), buf.data());
 #pragma omp barrier
 #pragma omp for schedule(static)
     for (std::int64_t r = 0; r < runCount; ++r)
@@ -88,6 +97,12 @@ const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_
       }
   }
   return b.merged;
+}
+
+template <int C, class Values>
+const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_t cells, DepositBuffers& b,
+                                           Values&& values) {
+  return depositChannels<C>(s, cells, b, values, [](int, std::size_t, std::size_t) {});
 }
 
 }  // namespace gf::coupling

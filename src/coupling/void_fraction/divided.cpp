@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -122,25 +123,24 @@ inline AxisSplit splitAxis(double x, double r, const double (&value)[kValues], d
 /// for the indices a block can touch; mapIndex itself outside the table.
 class AxisOffsets {
  public:
-  AxisOffsets(const GridTopology& t, int axis, std::size_t stride) : t_(&t), axis_(axis), stride_(stride) {
+  AxisOffsets(const GridTopology& t, int axis, std::size_t stride) : axis_(axis), stride_(stride) {
     const int n = t.grid.cells[axis];
     for (int i = kFirst; i <= n + 1; ++i) offset_.push_back(static_cast<std::size_t>(t.mapIndex(i, axis)) * stride);
   }
   /// offsets of cells lo and lo + 1
-  void pair(int lo, std::size_t& lower, std::size_t& upper) const {
+  void pair(const GridTopology& t, int lo, std::size_t& lower, std::size_t& upper) const {
     const auto k = static_cast<std::size_t>(lo - kFirst);
     if (k + 1 < offset_.size()) {
       lower = offset_[k];
       upper = offset_[k + 1];
     } else {
-      lower = static_cast<std::size_t>(t_->mapIndex(lo, axis_)) * stride_;
-      upper = static_cast<std::size_t>(t_->mapIndex(lo + 1, axis_)) * stride_;
+      lower = static_cast<std::size_t>(t.mapIndex(lo, axis_)) * stride_;
+      upper = static_cast<std::size_t>(t.mapIndex(lo + 1, axis_)) * stride_;
     }
   }
 
  private:
   static constexpr int kFirst = -2;
-  const GridTopology* t_;
   int axis_;
   std::size_t stride_;
   std::vector<std::size_t> offset_;
@@ -151,15 +151,28 @@ class DividedVoidFraction final : public VoidFractionScheme {
   explicit DividedVoidFraction(Params&) {}
   void buildStencils(const dem::ParticleSet& particles, const GridTopology& topology,
                      ParticleStencils& stencils) const override {
+    beginStencils(particles, topology, stencils);
+    if (stencils.capacity != kBlockCapacity) return;  // built by beginStencils
+    constexpr std::int64_t kPiece = 256;
+    const auto n = static_cast<std::int64_t>(particles.size());
+    forEachIndex((n + kPiece - 1) / kPiece, 29 * kPiece, [&](std::int64_t piece) {
+      const auto begin = static_cast<std::size_t>(piece * kPiece);
+      buildStencilRange(particles, topology, stencils, begin,
+                        std::min(begin + kPiece, static_cast<std::size_t>(n)));
+    });
+  }
+
+  void beginStencils(const dem::ParticleSet& particles, const GridTopology& topology,
+                     ParticleStencils& stencils) const override {
     const CartesianGrid& g = topology.grid;
     // Fast path when the points of every particle span less than one cell per axis: each point
     // then lies in one of two cells per axis, i.e. one of the 8 cells of a 2 x 2 x 2 block, and
     // the stencil is 8 point counts (no search). Cells are found exactly as by cellOf(x + r u).
     const double span = 2.0 * unit.reach * maxRadius(particles);
     const bool block = span < 0.999 * std::min({g.spacing.x, g.spacing.y, g.spacing.z});
-    stencils.resize(particles.size(), block ? 8 : kPoints);
+    stencils.resize(particles.size(), block ? kBlockCapacity : kPoints);
     if (block) {
-      buildBlocks(particles, topology, stencils);
+      if (!tables_ || !tables_->fits(topology)) tables_ = std::make_unique<BlockTables>(topology);
       return;
     }
     forEachIndex(static_cast<std::int64_t>(particles.size()), 29, [&](std::int64_t p) {
@@ -174,30 +187,56 @@ class DividedVoidFraction final : public VoidFractionScheme {
     });
   }
 
- private:
-  static void buildBlocks(const dem::ParticleSet& particles, const GridTopology& t, ParticleStencils& stencils) {
-    const int g = t.grid.ghosts;
-    const std::size_t ex = static_cast<std::size_t>(t.grid.cells[0] + 2 * g);
-    const std::size_t exy = ex * static_cast<std::size_t>(t.grid.cells[1] + 2 * g);
-    const AxisOffsets axisOffsets[3] = {{t, 0, 1}, {t, 1, ex}, {t, 2, exy}};
-    const std::size_t shift = static_cast<std::size_t>(g) * (exy + ex + 1);  // flat(0, 0, 0)
-    double weightOf[kPoints + 1];  // weight of a cell holding c points
-    for (int c = 0; c <= kPoints; ++c) weightOf[c] = c * (1.0 / kPoints);
-    forEachIndex(static_cast<std::int64_t>(particles.size()), 29, [&](std::int64_t p) {
-      StencilWriter w(stencils, static_cast<std::size_t>(p));
-      addBlock(t, axisOffsets, shift, weightOf, particles.position[p], particles.radius[p], w);
-    });
+  void buildStencilRange(const dem::ParticleSet& particles, const GridTopology& topology, ParticleStencils& stencils,
+                         std::size_t begin, std::size_t end) const override {
+    if (stencils.capacity != kBlockCapacity) return;  // general path: built by beginStencils
+    const BlockTables& tables = *tables_;
+    for (std::size_t p = begin; p < end; ++p) {
+      StencilWriter w(stencils, p);
+      addBlock(topology, tables, particles.position[p], particles.radius[p], w);
+    }
   }
 
-  static void addBlock(const GridTopology& t, const AxisOffsets (&axisOffsets)[3], std::size_t shift,
-                       const double (&weightOf)[kPoints + 1], const Vec3& x, double r, StencilWriter& w) {
+ private:
+  // the block path's stencil capacity; the general path's is kPoints = 29, so the capacity tells
+  // buildStencilRange which path beginStencils took
+  static constexpr int kBlockCapacity = 8;
+
+  /// What the block path needs of the grid, built once per grid.
+  struct BlockTables {
+    std::array<int, 3> cells;
+    int ghosts;
+    std::array<bool, 3> periodic;
+    AxisOffsets axis[3];
+    std::size_t shift;             // flat(0, 0, 0)
+    double weightOf[kPoints + 1];  // weight of a cell holding c points
+    explicit BlockTables(const GridTopology& t)
+        : cells(t.grid.cells),
+          ghosts(t.grid.ghosts),
+          periodic(t.periodic),
+          axis{{t, 0, 1}, {t, 1, extent(t, 0)}, {t, 2, extent(t, 0) * extent(t, 1)}},
+          shift(static_cast<std::size_t>(t.grid.ghosts) * (extent(t, 0) * extent(t, 1) + extent(t, 0) + 1)) {
+      for (int c = 0; c <= kPoints; ++c) weightOf[c] = c * (1.0 / kPoints);
+    }
+    bool fits(const GridTopology& t) const {
+      return cells == t.grid.cells && ghosts == t.grid.ghosts && periodic == t.periodic;
+    }
+    static std::size_t extent(const GridTopology& t, int a) {
+      return static_cast<std::size_t>(t.grid.cells[a] + 2 * t.grid.ghosts);
+    }
+  };
+  // built by beginStencils (one thread), only read by buildStencilRange (any thread)
+  mutable std::unique_ptr<BlockTables> tables_;
+
+  static void addBlock(const GridTopology& t, const BlockTables& tables, const Vec3& x, double r, StencilWriter& w) {
+    const AxisOffsets (&axisOffsets)[3] = tables.axis;
     std::size_t offset[3][2];  // flat(i, j, k) = offset[0][.] + offset[1][.] + offset[2][.] + shift
     const AxisSplit sx = splitAxis(x.x, r, unit.value[0], t.grid.origin.x, t.inverseSpacing.x);
     const AxisSplit sy = splitAxis(x.y, r, unit.value[1], t.grid.origin.y, t.inverseSpacing.y);
     const AxisSplit sz = splitAxis(x.z, r, unit.value[2], t.grid.origin.z, t.inverseSpacing.z);
-    axisOffsets[0].pair(sx.lo, offset[0][0], offset[0][1]);
-    axisOffsets[1].pair(sy.lo, offset[1][0], offset[1][1]);
-    axisOffsets[2].pair(sz.lo, offset[2][0], offset[2][1]);
+    axisOffsets[0].pair(t, sx.lo, offset[0][0], offset[0][1]);
+    axisOffsets[1].pair(t, sy.lo, offset[1][0], offset[1][1]);
+    axisOffsets[2].pair(t, sz.lo, offset[2][0], offset[2][1]);
     // the 8 cell counts of the table, one byte each (byte b: cell bit0 x + bit1 y + bit2 z)
     std::uint64_t counts = unit.packedCount[sx.split][sy.split][sz.split];
     // axes whose two cells map to the same cell (wall fold, one-cell periodic axis): add the upper
@@ -212,7 +251,8 @@ class DividedVoidFraction final : public VoidFractionScheme {
     // the stencil has capacity 8
     for (int b = 0; b < 8; ++b) {
       const auto c = static_cast<int>((counts >> (8 * b)) & 0xFF);
-      w.appendIf(c > 0, offset[0][b & 1] + offset[1][(b >> 1) & 1] + offset[2][(b >> 2) & 1] + shift, weightOf[c]);
+      w.appendIf(c > 0, offset[0][b & 1] + offset[1][(b >> 1) & 1] + offset[2][(b >> 2) & 1] + tables.shift,
+                 tables.weightOf[c]);
     }
   }
 };

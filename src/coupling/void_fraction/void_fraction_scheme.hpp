@@ -8,6 +8,8 @@
 //   divided       29 satellite points of equal weight (CFDEM 'divided'; seed 001 "SPM")
 //   kernel        smooth kernel over cells within a radius larger than a cell (QCM-like)
 //   big_particle  volume sampled on a sub-lattice inside the sphere, spread over all overlapped cells
+#include <cstddef>
+
 #include "coupling/grid_topology.hpp"
 #include "coupling/stencil.hpp"
 #include "core/params.hpp"
@@ -22,6 +24,18 @@ class VoidFractionScheme {
   /// Fills `stencils` for every particle of `particles`.
   virtual void buildStencils(const dem::ParticleSet& particles, const GridTopology& topology,
                              ParticleStencils& stencils) const = 0;
+
+  /// The same stencils built in pieces, for a consumer that uses each piece right away (the
+  /// Coupler's deposit then reads a stencil from cache just after it is written): beginStencils
+  /// sizes `stencils` for `particles` and may build all of them; buildStencilRange then builds
+  /// those of particles [begin, end) (disjoint ranges, any thread, after beginStencils). The
+  /// default builds everything in beginStencils. Same stencils as buildStencils, bit for bit.
+  virtual void beginStencils(const dem::ParticleSet& particles, const GridTopology& topology,
+                             ParticleStencils& stencils) const {
+    buildStencils(particles, topology, stencils);
+  }
+  virtual void buildStencilRange(const dem::ParticleSet& /*particles*/, const GridTopology& /*topology*/,
+                                 ParticleStencils& /*stencils*/, std::size_t /*begin*/, std::size_t /*end*/) const {}
 };
 
 /// Largest radius in the set (0 for an empty set).
