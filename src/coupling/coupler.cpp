@@ -6,6 +6,7 @@
 #include <numbers>
 #include <omp.h>
 #include <stdexcept>
+#include <type_traits>
 #include <unordered_map>
 
 #include "coupling/deposit.hpp"
@@ -166,28 +167,26 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   exchangeDeposited_ = fuse;
   particleVolume_ = 0.0;
   for (double sum : volumeSums_) particleVolume_ += sum;
-  Field& solid = solidFraction_;
-  const auto& c = topology_.grid.cells;
+  // interior cells in (k, j, i) order by rows of flat indices (deposit_.runs)
+  double* solid = solidFraction_.data().data();
   const double cellVolume = topology_.grid.cellVolume();
   depositedVolume_ = 0.0;
-  for (int k = 0; k < c[2]; ++k)
-    for (int j = 0; j < c[1]; ++j)
-      for (int i = 0; i < c[0]; ++i) {
-        const std::size_t q = solid.index(i, j, k);
-        depositedVolume_ += volume[q * volumeStride];
-        solid.data()[q] = volume[q * volumeStride] / cellVolume;  // solid fraction
-      }
-  smoothField(topology_, settings_.smoothingLength, solid);
+  for (const auto& run : deposit_.runs)
+    for (std::size_t q = run[0]; q < run[0] + run[1]; ++q) {
+      depositedVolume_ += volume[q * volumeStride];
+      solid[q] = volume[q * volumeStride] / cellVolume;  // solid fraction
+    }
+  smoothField(topology_, settings_.smoothingLength, solidFraction_);
   clippedVolume_ = 0.0;
-  Field& eps = fields.voidFraction;
-  for (int k = 0; k < c[2]; ++k)
-    for (int j = 0; j < c[1]; ++j)
-      for (int i = 0; i < c[0]; ++i) {
-        const double e = 1.0 - solid(i, j, k);
-        if (e < settings_.minVoidFraction) clippedVolume_ += (settings_.minVoidFraction - e) * cellVolume;
-        eps(i, j, k) = std::max(e, settings_.minVoidFraction);
-      }
-  fillGhosts(eps);
+  double* eps = fields.voidFraction.data().data();
+  const double minEps = settings_.minVoidFraction;
+  for (const auto& run : deposit_.runs)
+    for (std::size_t q = run[0]; q < run[0] + run[1]; ++q) {
+      const double e = 1.0 - solid[q];
+      if (e < minEps) clippedVolume_ += (minEps - e) * cellVolume;
+      eps[q] = std::max(e, minEps);
+    }
+  fillGhosts(fields.voidFraction);
 }
 
 void Coupler::packSamples(const FluidView& fluid, const CouplingFields& fields) {
@@ -217,14 +216,19 @@ void Coupler::packSamples(const FluidView& fluid, const CouplingFields& fields) 
   double* out = samples_.data();
   const double* in[13];
   for (int ch = 0; ch < k; ++ch) in[ch] = src[ch]->data().data();
-  // interior cells only: every stencil and interpolation maps its cells into the interior
+  // interior cells only: every stencil and interpolation maps its cells into the interior; rows
+  // in parallel (disjoint writes), the standard channel count fixed at compile time
   const auto& n = topology_.grid.cells;
-  for (int kk = 0; kk < n[2]; ++kk)
-    for (int j = 0; j < n[1]; ++j) {
-      const std::size_t row = topology_.flat(0, j, kk);
+  auto pack = [&]<int Channels>(std::integral_constant<int, Channels>) {
+    const int kc = Channels > 0 ? Channels : k;
+    forEachIndex(static_cast<std::int64_t>(n[2]) * n[1], static_cast<std::int64_t>(n[0]) * kc, [&](std::int64_t kj) {
+      const std::size_t row = topology_.flat(0, static_cast<int>(kj % n[1]), static_cast<int>(kj / n[1]));
       for (std::size_t q = row; q < row + static_cast<std::size_t>(n[0]); ++q)
-        for (int ch = 0; ch < k; ++ch) out[q * k + ch] = in[ch][q];
-    }
+        for (int ch = 0; ch < kc; ++ch) out[q * kc + ch] = in[ch][q];
+    });
+  };
+  if (k == kStandardChannels) pack(std::integral_constant<int, kStandardChannels>{});
+  else pack(std::integral_constant<int, 0>{});
   if (settings_.fluxVelocity) scaleToFluxVelocity(fields.voidFraction);
 }
 
@@ -446,9 +450,15 @@ void Coupler::fillFluidSources(CouplingFields& fields) {
   const bool implicit = settings_.exchange == ExchangeScheme::SemiImplicit;
   depositExchange(fields, implicit);
   if (settings_.smoothExchangeFields && settings_.smoothingLength > 0.0) smoothExchange(fields, implicit);
-  for (auto& f : fields.forceDensity) fillGhosts(f);
-  fillGhosts(fields.dragCoefficient);
-  for (auto& f : fields.particleVelocity) fillGhosts(f);
+  // the ghosts of the 7 exchange fields in one pass over the ghost lists
+  double* exchange[7] = {fields.forceDensity[0].data().data(),     fields.forceDensity[1].data().data(),
+                         fields.forceDensity[2].data().data(),     fields.dragCoefficient.data().data(),
+                         fields.particleVelocity[0].data().data(), fields.particleVelocity[1].data().data(),
+                         fields.particleVelocity[2].data().data()};
+  for (std::size_t q = 0; q < ghostTarget_.size(); ++q) {
+    const std::size_t target = ghostTarget_[q], source = ghostSource_[q];
+    for (double* d : exchange) d[target] = d[source];
+  }
   updateMomentumBalance(fields, implicit);
   exchangePending_ = exchangeDeposited_ = false;
 }
@@ -504,19 +514,22 @@ void Coupler::depositExchange(CouplingFields& fields, bool implicit) {
         }
     return;
   }
-  for (int k = 0; k < c[2]; ++k)
-    for (int j = 0; j < c[1]; ++j)
-      for (int i = 0; i < c[0]; ++i) {
-        const std::size_t q = solidFraction_.index(i, j, k);
-        const double* v = &sum[q * stride];
-        for (int a = 0; a < 3; ++a) fields.forceDensity[a].data()[q] = v[a] * inverseCellVolume;
-        const double kv = v[3];  // sum w beta
-        fields.dragCoefficient.data()[q] = kv * inverseCellVolume;
-        // K u_p_avg V = sum w beta (u_p + u_c - u_f@p): the mean particle velocity corrected by the
-        // interpolation defect, so that K (u_c - u_p_avg) V equals the particles' drag exactly.
-        for (int a = 0; a < 3; ++a)
-          fields.particleVelocity[a].data()[q] = kv > 0.0 ? u[a]->data()[q] + v[4 + a] / kv : 0.0;
-      }
+  double* force[3] = {fields.forceDensity[0].data().data(), fields.forceDensity[1].data().data(),
+                      fields.forceDensity[2].data().data()};
+  double* up[3] = {fields.particleVelocity[0].data().data(), fields.particleVelocity[1].data().data(),
+                   fields.particleVelocity[2].data().data()};
+  const double* uf[3] = {u[0]->data().data(), u[1]->data().data(), u[2]->data().data()};
+  double* drag = fields.dragCoefficient.data().data();
+  for (const auto& run : deposit_.runs)  // the interior rows
+    for (std::size_t q = run[0]; q < run[0] + run[1]; ++q) {
+      const double* v = &sum[q * stride];
+      for (int a = 0; a < 3; ++a) force[a][q] = v[a] * inverseCellVolume;
+      const double kv = v[3];  // sum w beta
+      drag[q] = kv * inverseCellVolume;
+      // K u_p_avg V = sum w beta (u_p + u_c - u_f@p): the mean particle velocity corrected by the
+      // interpolation defect, so that K (u_c - u_p_avg) V equals the particles' drag exactly.
+      for (int a = 0; a < 3; ++a) up[a][q] = kv > 0.0 ? uf[a][q] + v[4 + a] / kv : 0.0;
+    }
 }
 
 void Coupler::smoothExchange(CouplingFields& fields, bool implicit) const {
@@ -549,18 +562,22 @@ void Coupler::updateMomentumBalance(const CouplingFields& fields, bool implicit)
   const Vec3 onParticles{sums[0], sums[1], sums[2]};
   Vec3 onFluid{};
   exchangedForceScale_ = sums[3];
-  const auto& c = topology_.grid.cells;
   const double cellVolume = topology_.grid.cellVolume();
   const Field* const* u = lastFluid_.velocity;
-  for (int k = 0; k < c[2]; ++k)
-    for (int j = 0; j < c[1]; ++j)
-      for (int i = 0; i < c[0]; ++i)
-        for (int a = 0; a < 3; ++a) {
-          double s = fields.forceDensity[a](i, j, k);
-          if (implicit)
-            s -= fields.dragCoefficient(i, j, k) * ((*u[a])(i, j, k) - fields.particleVelocity[a](i, j, k));
-          onFluid[a] += s * cellVolume;
-        }
+  // interior cells in (k, j, i) order, by rows of flat indices (all fields share the layout)
+  const double* force[3] = {fields.forceDensity[0].data().data(), fields.forceDensity[1].data().data(),
+                            fields.forceDensity[2].data().data()};
+  const double* up[3] = {fields.particleVelocity[0].data().data(), fields.particleVelocity[1].data().data(),
+                         fields.particleVelocity[2].data().data()};
+  const double* uf[3] = {u[0]->data().data(), u[1]->data().data(), u[2]->data().data()};
+  const double* drag = fields.dragCoefficient.data().data();
+  for (const auto& run : deposit_.runs)
+    for (std::size_t q = run[0]; q < run[0] + run[1]; ++q)
+      for (int a = 0; a < 3; ++a) {
+        double s = force[a][q];
+        if (implicit) s -= drag[q] * (uf[a][q] - up[a][q]);
+        onFluid[a] += s * cellVolume;
+      }
   balanceError_ = onParticles + onFluid;
 }
 
