@@ -92,29 +92,41 @@ using Double2 = double __attribute__((vector_size(16)));
 using Mask2 = long long __attribute__((vector_size(16)));
 #endif
 
+/// The unit coordinates scaled by a radius, r u_v, per axis (the same products as r * u_v
+/// computed per point; reused while consecutive particles share the radius).
+struct ScaledPoints {
+  double r = -1.0;
+  double value[3][kValues];
+  void scale(double radius) {
+    r = radius;
+    for (int a = 0; a < 3; ++a)
+      for (int v = 0; v < kValues; ++v) value[a][v] = radius * unit.value[a][v];
+  }
+};
+
 /// Along one axis: the cell lo of the lowest point, and the number of points (of the 9 sorted
 /// unit coordinates) in cell lo; the others lie in lo + 1 (block path, points span < 1 cell).
 /// The scaled coordinate of point v is (x + r u_v - origin) / h exactly as cellOf computes it;
 /// it grows monotonically with u (rounding is monotone), so the points in the lower cell are the
-/// first `split` sorted coordinates.
+/// first `split` sorted coordinates. ru: the r u_v of the axis.
 struct AxisSplit {
   int lo;
   int split;
 };
-inline AxisSplit splitAxis(double x, double r, const double (&value)[kValues], double origin, double inv) {
-  const int lo = floorToInt((x + r * value[0] - origin) * inv);
+inline AxisSplit splitAxis(double x, const double (&ru)[kValues], double origin, double inv) {
+  const int lo = floorToInt((x + ru[0] - origin) * inv);
   const double upper = lo + 1.0;
 #if defined(__GNUC__)
   // the 8 upper coordinates two at a time (same operations, same rounding as the scalar form)
   Mask2 below{0, 0};
   for (int v = 1; v < kValues; v += 2) {
-    const Double2 u{value[v], value[v + 1]};
-    below += (x + r * u - origin) * inv < upper;  // -1 where true
+    const Double2 u{ru[v], ru[v + 1]};
+    below += (x + u - origin) * inv < upper;  // -1 where true
   }
   return {lo, static_cast<int>(1 - below[0] - below[1])};
 #else
   int s = 1;  // the lowest coordinate lies below lo + 1 by the definition of lo
-  for (int v = 1; v < kValues; ++v) s += (x + r * value[v] - origin) * inv < upper ? 1 : 0;
+  for (int v = 1; v < kValues; ++v) s += (x + ru[v] - origin) * inv < upper ? 1 : 0;
   return {lo, s};
 #endif
 }
@@ -191,9 +203,11 @@ class DividedVoidFraction final : public VoidFractionScheme {
                          std::size_t begin, std::size_t end) const override {
     if (stencils.capacity != kBlockCapacity) return;  // general path: built by beginStencils
     const BlockTables& tables = *tables_;
+    ScaledPoints points;
     for (std::size_t p = begin; p < end; ++p) {
-      StencilWriter w(stencils, p);
-      addBlock(topology, tables, particles.position[p], particles.radius[p], w);
+      if (particles.radius[p] != points.r) points.scale(particles.radius[p]);
+      addBlock(topology, tables, points, particles.position[p], stencils.cell.data() + p * kBlockCapacity,
+               stencils.weight.data() + p * kBlockCapacity, stencils.count[p]);
     }
   }
 
@@ -228,12 +242,14 @@ class DividedVoidFraction final : public VoidFractionScheme {
   // built by beginStencils (one thread), only read by buildStencilRange (any thread)
   mutable std::unique_ptr<BlockTables> tables_;
 
-  static void addBlock(const GridTopology& t, const BlockTables& tables, const Vec3& x, double r, StencilWriter& w) {
+  /// The block stencil of the particle at x into cell[0..8), weight[0..8), count.
+  static void addBlock(const GridTopology& t, const BlockTables& tables, const ScaledPoints& points, const Vec3& x,
+                       std::size_t* cell, double* weight, int& count) {
     const AxisOffsets (&axisOffsets)[3] = tables.axis;
     std::size_t offset[3][2];  // flat(i, j, k) = offset[0][.] + offset[1][.] + offset[2][.] + shift
-    const AxisSplit sx = splitAxis(x.x, r, unit.value[0], t.grid.origin.x, t.inverseSpacing.x);
-    const AxisSplit sy = splitAxis(x.y, r, unit.value[1], t.grid.origin.y, t.inverseSpacing.y);
-    const AxisSplit sz = splitAxis(x.z, r, unit.value[2], t.grid.origin.z, t.inverseSpacing.z);
+    const AxisSplit sx = splitAxis(x.x, points.value[0], t.grid.origin.x, t.inverseSpacing.x);
+    const AxisSplit sy = splitAxis(x.y, points.value[1], t.grid.origin.y, t.inverseSpacing.y);
+    const AxisSplit sz = splitAxis(x.z, points.value[2], t.grid.origin.z, t.inverseSpacing.z);
     axisOffsets[0].pair(t, sx.lo, offset[0][0], offset[0][1]);
     axisOffsets[1].pair(t, sy.lo, offset[1][0], offset[1][1]);
     axisOffsets[2].pair(t, sz.lo, offset[2][0], offset[2][1]);
@@ -247,13 +263,21 @@ class DividedVoidFraction final : public VoidFractionScheme {
       const std::uint64_t keep = lowerHalf[a] | ~fold;
       counts = (counts & keep) + ((counts >> (8 << a)) & lowerHalf[a] & fold);
     }
-    // the non-empty cells in block order; branch-free (which cells are empty is hard to predict),
-    // the stencil has capacity 8
+    // the non-empty cells in block order, branch-free (which cells are empty is hard to predict):
+    // entry b goes to slot = number of non-empty cells before it (byte-wise prefix sums of the
+    // non-empty flags by one multiplication); an empty cell's entry is overwritten by the next
+    // non-empty one or lies beyond the count (capacity 8)
+    constexpr std::uint64_t ones = 0x0101010101010101ull;
+    const std::uint64_t nonEmpty = (counts | counts >> 1 | counts >> 2 | counts >> 3 | counts >> 4) & ones;
+    const std::uint64_t inclusive = nonEmpty * ones;  // byte b: non-empty cells 0..b (<= 8, no carry)
+    const std::uint64_t slots = inclusive - nonEmpty;  // byte b: non-empty cells before b
     for (int b = 0; b < 8; ++b) {
       const auto c = static_cast<int>((counts >> (8 * b)) & 0xFF);
-      w.appendIf(c > 0, offset[0][b & 1] + offset[1][(b >> 1) & 1] + offset[2][(b >> 2) & 1] + tables.shift,
-                 tables.weightOf[c]);
+      const auto slot = static_cast<int>((slots >> (8 * b)) & 0xFF);
+      cell[slot] = offset[0][b & 1] + offset[1][(b >> 1) & 1] + offset[2][(b >> 2) & 1] + tables.shift;
+      weight[slot] = tables.weightOf[c];
     }
+    count = static_cast<int>(inclusive >> 56);
   }
 };
 
