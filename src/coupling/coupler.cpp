@@ -405,7 +405,7 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
     }
   });
   previousId_ = particles.id;
-  previousSlip_ = slip_;
+  keepSlipAsPrevious();
   forcesReady_ = true;
   exchangePending_ = true;
   exchangeDeposited_ = false;
@@ -432,7 +432,7 @@ void Coupler::realignToParticles(const dem::ParticleSet& particles) {
   slip_ = std::move(slip);
   beta_ = std::move(beta);
   particleForceSumsValid_ = false;  // particles gone or new: sum the realigned forces
-  previousSlip_ = slip_;
+  keepSlipAsPrevious();
   previousId_ = particles.id;
 }
 
@@ -600,14 +600,22 @@ CouplingIntervalCheck Coupler::checkCouplingInterval(double demTimeStep, int dem
                                              fluid.viscosity, slip, settings_.minRelaxationToIntervalRatio);
 }
 
+void Coupler::keepSlipAsPrevious() {
+  // the slip of this step is the previous slip of the next one; only the virtual mass force reads
+  // it, otherwise it is only saved (from slip_ itself, no copy per step)
+  previousSlipIsSlip_ = !settings_.forces.virtualMass;
+  if (!previousSlipIsSlip_) previousSlip_ = slip_;
+}
+
 void Coupler::save(BinaryWriter& out) const {
   out.putVector(previousId_);
-  out.putVector(previousSlip_);
+  out.putVector(previousSlipIsSlip_ ? slip_ : previousSlip_);
 }
 
 void Coupler::load(BinaryReader& in) {
   previousId_ = in.getVector<std::int64_t>();
   previousSlip_ = in.getVector<Vec3>();
+  previousSlipIsSlip_ = false;
   if (previousId_.size() != previousSlip_.size())
     throw CheckpointError("checkpoint is corrupt: coupling state arrays have different lengths");
 }

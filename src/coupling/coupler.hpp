@@ -124,6 +124,7 @@ class Coupler {
   template <InterpolationMode Mode, bool StandardChannels, class Law>
   void forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet& particles);
   void alignPreviousSlip(const dem::ParticleSet& particles);
+  void keepSlipAsPrevious();
   void realignToParticles(const dem::ParticleSet& particles);
   static constexpr int kImplicitExchangeChannels = 7, kExplicitExchangeChannels = 3;
   /// The exchange quantities of particle p that are deposited (see depositExchange).
@@ -155,6 +156,7 @@ class Coupler {
   std::vector<double> beta_;
   std::vector<std::int64_t> previousId_;
   std::vector<Vec3> previousSlip_;  // NaN where a particle has no history (virtual mass)
+  bool previousSlipIsSlip_ = false;  // previousSlip_ is slip_ (not copied without virtual mass)
   double particleVolume_ = 0.0, depositedVolume_ = 0.0, clippedVolume_ = 0.0;
   Vec3 balanceError_;
   bool stencilsReady_ = false, forcesReady_ = false;

@@ -234,7 +234,7 @@ class TrilinearSampler {
     /// offsets of mapIndex(lower) and mapIndex(lower + 1); mapIndex itself outside the table
     void pair(const GridTopology& t, int lower, std::ptrdiff_t& lo, std::ptrdiff_t& hi) const {
       const auto k = static_cast<std::size_t>(lower - kFirst);
-      if (k + 1 < offset.size()) {
+      if (k < offset.size() - 1) {  // (k wraps to a huge value below the table)
         lo = offset[k];
         hi = offset[k + 1];
       } else {

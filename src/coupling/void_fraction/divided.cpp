@@ -142,7 +142,7 @@ class AxisOffsets {
   /// offsets of cells lo and lo + 1
   void pair(const GridTopology& t, int lo, std::size_t& lower, std::size_t& upper) const {
     const auto k = static_cast<std::size_t>(lo - kFirst);
-    if (k + 1 < offset_.size()) {
+    if (k < offset_.size() - 1) {  // (k wraps to a huge value below the table)
       lower = offset_[k];
       upper = offset_[k + 1];
     } else {

@@ -1,0 +1,164 @@
+// The fast paths of the coupling step against their definitions, bit for bit: the tabulated
+// trilinear sampler (forces), the 2 x 2 x 2 block path of the divided scheme and its piecewise
+// building (void fraction), and the per-thread-block sums (momentum balance, particle volume).
+#include <gtest/gtest.h>
+
+#include <omp.h>
+
+#include <cmath>
+#include <map>
+#include <random>
+#include <vector>
+
+#include "coupling/interpolation.hpp"
+#include "coupling/loops.hpp"
+#include "coupling/void_fraction/void_fraction_scheme.hpp"
+#include "coupling_test_helpers.hpp"
+
+using namespace gf;
+using namespace gf::coupling;
+using namespace gf::coupling::testing;
+
+namespace {
+
+const std::array<bool, 3> kPeriodicities[] = {{false, false, false}, {true, false, true}, {true, true, true}};
+
+/// The 29 unit points of the divided scheme as its documentation defines them (divided.cpp, CFDEM
+/// 'divided'): the centre, and on spheres of radius 0.623926 and 0.623926 + 0.293976 the 8 points
+/// (+-r/2, +-r/2, +-r/sqrt(2)) and the 6 points on the axes.
+std::vector<Vec3> dividedUnitPoints() {
+  std::vector<Vec3> pts{{0.0, 0.0, 0.0}};
+  for (double r : {0.623926, 0.623926 + 0.293976}) {
+    for (double sx : {1.0, -1.0})
+      for (double sy : {1.0, -1.0})
+        for (double sz : {1.0, -1.0}) pts.push_back({sx * 0.5 * r, sy * 0.5 * r, sz * std::sqrt(0.5) * r});
+    for (int axis = 0; axis < 3; ++axis)
+      for (double s : {-1.0, 1.0}) {
+        Vec3 v{};
+        v[axis] = s * r;
+        pts.push_back(v);
+      }
+  }
+  return pts;
+}
+
+std::unique_ptr<VoidFractionScheme> makeScheme(const std::string& name) {
+  Params p = Params::loadString("void_fraction: " + name + "\n", "test.yaml");
+  return Registry<VoidFractionScheme>::instance().create(p, {"void_fraction", "-", "scheme"}, name);
+}
+
+}  // namespace
+
+TEST(FastPaths, TabulatedTrilinearSamplerIsBitIdenticalToSampleTrilinear) {
+  // positions inside, next to the walls and up to 1.5 cells outside (clamped / wrapped)
+  const CartesianGrid g = makeGrid({3, 4, 5}, {0.01, 0.008, 0.012}, {-0.004, 0.002, 0.001});
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  constexpr int kChannels = 10;
+  for (const auto& periodic : kPeriodicities) {
+    const GridTopology t(g, periodic);
+    const Field layout(g);
+    std::vector<double> buffer(layout.data().size() * kChannels);
+    for (double& v : buffer) v = u(rng);
+    const TrilinearSampler sampler(t);
+    for (int n = 0; n < 2000; ++n) {
+      Vec3 x;
+      for (int a = 0; a < 3; ++a) x[a] = g.origin[a] + (0.5 + 0.5 * u(rng)) * g.cells[a] * g.spacing[a] + u(rng) * g.spacing[a];
+      double expected[kChannels], fixed[kChannels], runtime[kChannels];
+      sampleTrilinear<kChannels>(t, x, buffer.data(), kChannels, expected);
+      sampler.sample<kChannels>(x, buffer.data(), kChannels, fixed);
+      sampler.sample<0>(x, buffer.data(), kChannels, runtime);
+      for (int ch = 0; ch < kChannels; ++ch) {
+        ASSERT_EQ(fixed[ch], expected[ch]) << "channel " << ch;
+        ASSERT_EQ(runtime[ch], expected[ch]) << "channel " << ch;
+      }
+    }
+  }
+}
+
+TEST(FastPaths, DividedBlockStencilsAreTheCellsOfThe29SatellitePoints) {
+  // particles smaller than a cell (the block path), centres inside and up to 3 cells outside the
+  // box: every satellite point's part (1/29) goes to the cell containing the point (wrapped at
+  // periodic boundaries, folded back at walls), merged by cell
+  const CartesianGrid g = makeGrid({2, 6, 7}, {0.0075, 0.005, 0.005}, {0.0, 0.001, -0.002});
+  const dem::ParticleSet particles =
+      randomParticles(4000, 0.0008, 0.0013, {-0.0225, -0.014, -0.017}, {0.0375, 0.046, 0.048}, 5);
+  const std::vector<Vec3> unit = dividedUnitPoints();
+  ASSERT_EQ(unit.size(), 29u);
+  const auto scheme = makeScheme("divided");
+  for (const auto& periodic : kPeriodicities) {
+    const GridTopology t(g, periodic);
+    ParticleStencils s;
+    scheme->buildStencils(particles, t, s);
+    ASSERT_EQ(s.capacity, 8);  // the block path
+    for (std::size_t p = 0; p < particles.size(); ++p) {
+      std::map<std::size_t, int> points;
+      for (const Vec3& v : unit) {
+        const auto c = t.cellOf(particles.position[p] + particles.radius[p] * v);
+        ++points[t.flat(c[0], c[1], c[2])];
+      }
+      ASSERT_EQ(s.count[p], static_cast<int>(points.size())) << "particle " << p;
+      double sum = 0.0;
+      for (int e = 0; e < s.count[p]; ++e) {
+        const std::size_t cell = s.cell[p * s.capacity + e];
+        ASSERT_EQ(points.count(cell), 1u) << "particle " << p;
+        EXPECT_EQ(s.weight[p * s.capacity + e], points[cell] * (1.0 / 29.0));
+        sum += s.weight[p * s.capacity + e];
+      }
+      EXPECT_NEAR(sum, 1.0, 1e-15);
+    }
+  }
+}
+
+TEST(FastPaths, StencilsBuiltInPiecesEqualTheWholeBuildForEveryScheme) {
+  const CartesianGrid g = makeGrid({4, 5, 6}, {0.01, 0.01, 0.01});
+  const dem::ParticleSet small = randomParticles(700, 0.001, 0.002, {-0.001, 0, 0}, {0.041, 0.05, 0.06}, 9);
+  const dem::ParticleSet big = randomParticles(200, 0.004, 0.006, {0, 0, 0}, {0.04, 0.05, 0.06}, 10);
+  for (const char* name : {"pcm", "divided", "kernel", "big_particle"}) {
+    const auto scheme = makeScheme(name);
+    for (const dem::ParticleSet* particles : {&small, &big}) {
+      const GridTopology t(g, {true, false, false});
+      ParticleStencils whole, pieces;
+      scheme->buildStencils(*particles, t, whole);
+      scheme->beginStencils(*particles, t, pieces);
+      // uneven pieces, last first
+      const std::size_t n = particles->size(), cut = n / 3;
+      scheme->buildStencilRange(*particles, t, pieces, cut, n);
+      scheme->buildStencilRange(*particles, t, pieces, 0, cut);
+      ASSERT_EQ(pieces.capacity, whole.capacity) << name;
+      ASSERT_EQ(pieces.count, whole.count) << name;
+      for (std::size_t p = 0; p < n; ++p)
+        for (int e = 0; e < whole.count[p]; ++e) {
+          const std::size_t q = p * whole.capacity + e;
+          ASSERT_EQ(pieces.cell[q], whole.cell[q]) << name;
+          ASSERT_EQ(pieces.weight[q], whole.weight[q]) << name;
+        }
+    }
+  }
+}
+
+TEST(FastPaths, SumsOverRangesEqualSumsOverIndicesBitForBit) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> values(20011);
+  for (double& v : values) v = u(rng) * std::exp(20.0 * u(rng));  // wide range: order matters
+  const int saved = omp_get_max_threads();
+  for (int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    const auto n = static_cast<std::int64_t>(values.size());
+    const auto byIndex = sumsOverIndices<2>(n, [&](std::int64_t i, std::array<double, 2>& s) {
+      s[0] += values[i];
+      s[1] += std::abs(values[i]);
+    });
+    const auto byRange = sumsOverRanges<2>(n, [&](std::int64_t begin, std::int64_t end, std::array<double, 2>& s) {
+      for (std::int64_t i = begin; i < end; i += 7)  // in pieces, as the force pass does
+        for (std::int64_t k = i; k < std::min(end, i + 7); ++k) {
+          s[0] += values[k];
+          s[1] += std::abs(values[k]);
+        }
+    });
+    EXPECT_EQ(byRange[0], byIndex[0]) << threads;
+    EXPECT_EQ(byRange[1], byIndex[1]) << threads;
+  }
+  omp_set_num_threads(saved);
+}
