@@ -455,10 +455,10 @@ void Coupler::fillFluidSources(CouplingFields& fields) {
                          fields.forceDensity[2].data().data(),     fields.dragCoefficient.data().data(),
                          fields.particleVelocity[0].data().data(), fields.particleVelocity[1].data().data(),
                          fields.particleVelocity[2].data().data()};
-  for (std::size_t q = 0; q < ghostTarget_.size(); ++q) {
-    const std::size_t target = ghostTarget_[q], source = ghostSource_[q];
+  forEachIndex(static_cast<std::int64_t>(ghostTarget_.size()), 7, [&](std::int64_t q) {
+    const std::size_t target = ghostTarget_[q], source = ghostSource_[q];  // source: an interior cell
     for (double* d : exchange) d[target] = d[source];
-  }
+  });
   updateMomentumBalance(fields, implicit);
   exchangePending_ = exchangeDeposited_ = false;
 }
@@ -520,7 +520,9 @@ void Coupler::depositExchange(CouplingFields& fields, bool implicit) {
                    fields.particleVelocity[2].data().data()};
   const double* uf[3] = {u[0]->data().data(), u[1]->data().data(), u[2]->data().data()};
   double* drag = fields.dragCoefficient.data().data();
-  for (const auto& run : deposit_.runs)  // the interior rows
+  const auto* runs = deposit_.runs.data();
+  forEachIndex(static_cast<std::int64_t>(deposit_.runs.size()), 8 * topology_.grid.cells[0], [&](std::int64_t r) {
+    const auto& run = runs[r];  // an interior row; rows in parallel (disjoint writes)
     for (std::size_t q = run[0]; q < run[0] + run[1]; ++q) {
       const double* v = &sum[q * stride];
       for (int a = 0; a < 3; ++a) force[a][q] = v[a] * inverseCellVolume;
@@ -530,6 +532,7 @@ void Coupler::depositExchange(CouplingFields& fields, bool implicit) {
       // interpolation defect, so that K (u_c - u_p_avg) V equals the particles' drag exactly.
       for (int a = 0; a < 3; ++a) up[a][q] = kv > 0.0 ? uf[a][q] + v[4 + a] / kv : 0.0;
     }
+  });
 }
 
 void Coupler::smoothExchange(CouplingFields& fields, bool implicit) const {
