@@ -302,11 +302,15 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   auto forceBlock = [&, rho, mu, epsFloor, dPrimFactor, k3](std::size_t begin, int count, std::array<double, 4>& sums) {
     double sum[4] = {sums[0], sums[1], sums[2], sums[3]};  // in registers, not through the reference
     double s[kBlock][13];
-    for (int q = 0; q < count; ++q) {
-      const std::size_t p = begin + q;
-      if constexpr (Mode == InterpolationMode::Trilinear) {
-        sampler.sample<StandardChannels ? kStandardChannels : 0>(particles.position[p], samples, channels, s[q]);
-      } else {
+    if constexpr (Mode == InterpolationMode::Trilinear) {
+      // locate the whole block first, then sum (the chains of several particles overlap)
+      TrilinearSampler::Location where[kBlock];
+      for (int q = 0; q < count; ++q) where[q] = sampler.locate(particles.position[begin + q]);
+      for (int q = 0; q < count; ++q)
+        sampler.sampleAt<StandardChannels ? kStandardChannels : 0>(where[q], samples, channels, s[q]);
+    } else {
+      for (int q = 0; q < count; ++q) {
+        const std::size_t p = begin + q;
         SampleWeights sw;
         sampleWeights<Mode>(topology_, stencils_, p, particles.position[p], sw);
         sampleInterleaved(sw, samples, channels, s[q]);

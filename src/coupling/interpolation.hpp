@@ -192,23 +192,39 @@ class TrilinearSampler {
     }
   }
 
-  template <int Channels = 0>
-  void sample(const Vec3& position, const double* buffer, int channels, double* out) const {
-    if constexpr (Channels > 0) channels = Channels;
-    std::ptrdiff_t flat = shift_, step[3];  // step: flat offset of the upper cell (0 where folded onto the lower)
+  /// Where a point samples: the flat index of its lower cell, the flat offsets of the upper
+  /// cells along each axis (0 where folded onto the lower one) and the fractions.
+  struct Location {
+    std::ptrdiff_t flat;
+    std::ptrdiff_t step[3];
     double frac[3];
+  };
+
+  Location locate(const Vec3& position) const {
+    Location l;
+    l.flat = shift_;
     for (int a = 0; a < 3; ++a) {
       const Axis& x = axis_[a];
       // as axisPosition: scaled coordinate, clamped in wall directions, floor and fraction
       const double s = std::min(std::max((position[a] - x.origin) * x.inverseSpacing - 0.5, x.low), x.high);
       const int lower = floorToInt(s);
-      frac[a] = s - lower;
+      l.frac[a] = s - lower;
       std::ptrdiff_t lo, hi;
       x.pair(*t_, lower, lo, hi);
-      flat += lo;
-      step[a] = hi - lo;
+      l.flat += lo;
+      l.step[a] = hi - lo;
     }
-    const double* base = buffer + flat * channels;
+    return l;
+  }
+
+  /// The weighted sums of the channels at a located point. Locating a block of points first and
+  /// then summing lets the latency chains of several points overlap.
+  template <int Channels = 0>
+  void sampleAt(const Location& l, const double* buffer, int channels, double* out) const {
+    if constexpr (Channels > 0) channels = Channels;
+    const double* base = buffer + l.flat * channels;
+    const double* frac = l.frac;
+    const std::ptrdiff_t* step = l.step;
     double sum[Channels > 0 ? Channels : 1];
     double* acc = Channels > 0 ? sum : out;
     for (int ch = 0; ch < channels; ++ch) acc[ch] = 0.0;
@@ -222,6 +238,11 @@ class TrilinearSampler {
         }
     if constexpr (Channels > 0)
       for (int ch = 0; ch < Channels; ++ch) out[ch] = sum[ch];
+  }
+
+  template <int Channels = 0>
+  void sample(const Vec3& position, const double* buffer, int channels, double* out) const {
+    sampleAt<Channels>(locate(position), buffer, channels, out);
   }
 
  private:
