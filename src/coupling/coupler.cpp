@@ -305,7 +305,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
     if constexpr (Mode == InterpolationMode::Trilinear) {
       // locate the whole block first, then sum (the chains of several particles overlap)
       TrilinearSampler::Location where[kBlock];
-      for (int q = 0; q < count; ++q) where[q] = sampler.locate(particles.position[begin + q]);
+      for (int q = 0; q < count; ++q) sampler.locate(particles.position[begin + q], where[q]);
       for (int q = 0; q < count; ++q)
         sampler.sampleAt<StandardChannels ? kStandardChannels : 0>(where[q], samples, channels, s[q]);
     } else {

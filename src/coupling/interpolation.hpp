@@ -200,9 +200,10 @@ class TrilinearSampler {
     double frac[3];
   };
 
-  Location locate(const Vec3& position) const {
-    Location l;
-    l.flat = shift_;
+  /// (Written field by field into l: a Location returned by value was built on the stack and
+  /// copied with wider loads than its stores, which stalled store forwarding.)
+  void locate(const Vec3& position, Location& l) const {
+    std::ptrdiff_t flat = shift_;
     for (int a = 0; a < 3; ++a) {
       const Axis& x = axis_[a];
       // as axisPosition: scaled coordinate, clamped in wall directions, floor and fraction
@@ -211,10 +212,10 @@ class TrilinearSampler {
       l.frac[a] = s - lower;
       std::ptrdiff_t lo, hi;
       x.pair(*t_, lower, lo, hi);
-      l.flat += lo;
+      flat += lo;
       l.step[a] = hi - lo;
     }
-    return l;
+    l.flat = flat;
   }
 
   /// The weighted sums of the channels at a located point. Locating a block of points first and
@@ -242,7 +243,9 @@ class TrilinearSampler {
 
   template <int Channels = 0>
   void sample(const Vec3& position, const double* buffer, int channels, double* out) const {
-    sampleAt<Channels>(locate(position), buffer, channels, out);
+    Location l;
+    locate(position, l);
+    sampleAt<Channels>(l, buffer, channels, out);
   }
 
  private:
