@@ -95,9 +95,12 @@ using Mask2 = long long __attribute__((vector_size(16)));
 /// The unit coordinates scaled by a radius, r u_v, per axis (the same products as r * u_v
 /// computed per point; reused while consecutive particles share the radius).
 struct ScaledPoints {
-  double r = -1.0;
-  double value[3][kValues];
+  bool valid = false;
+  double r = 0.0;
+  double value[3][kValues] = {};
+  bool scaledFor(double radius) const { return valid && radius == r; }
   void scale(double radius) {
+    valid = true;
     r = radius;
     for (int a = 0; a < 3; ++a)
       for (int v = 0; v < kValues; ++v) value[a][v] = radius * unit.value[a][v];
@@ -205,7 +208,7 @@ class DividedVoidFraction final : public VoidFractionScheme {
     const BlockTables& tables = *tables_;
     ScaledPoints points;
     for (std::size_t p = begin; p < end; ++p) {
-      if (particles.radius[p] != points.r) points.scale(particles.radius[p]);
+      if (!points.scaledFor(particles.radius[p])) points.scale(particles.radius[p]);
       addBlock(topology, tables, points, particles.position[p], stencils.cell.data() + p * kBlockCapacity,
                stencils.weight.data() + p * kBlockCapacity, stencils.count[p]);
     }
