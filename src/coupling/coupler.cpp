@@ -316,17 +316,22 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
         sampleInterleaved(sw, samples, channels, s[q]);
       }
     }
-    double eps[kBlock], re[kBlock];
+    // Re = rho |slip| d_prim / mu, the square roots and divisions two particles at a time (the
+    // same operations per particle as rho * norm(slip) * dPrim / mu)
+    double eps[kBlock], re[kBlock], slipSquared[kBlock], slipNorm[kBlock], dPrimOf[kBlock];
     for (int q = 0; q < count; ++q) {
       const std::size_t p = begin + q;
       const Vec3 uf{s[q][0], s[q][1], s[q][2]};
       eps[q] = std::clamp(s[q][3], epsFloor, 1.0);
       const Vec3 slip = uf - particles.velocity[p];
-      const double dPrim = 2.0 * particles.radius[p] * dPrimFactor;
-      re[q] = rho * norm(slip) * dPrim / mu;
+      dPrimOf[q] = 2.0 * particles.radius[p] * dPrimFactor;
+      slipSquared[q] = dot(slip, slip);
       fluidVelocityAtParticle_[p] = uf;
       slip_[p] = slip;
     }
+    squareRoots(slipSquared, slipNorm, count);
+    for (int q = 0; q < count; ++q) re[q] = rho * slipNorm[q] * dPrimOf[q] / mu;
+    double exchangedSquared[kBlock];
     for (int q = 0; q < count; ++q) {
       const std::size_t p = begin + q;
       const Vec3 slip = slip_[p];
@@ -359,8 +364,11 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       particles.externalTorque[p] = torque;
       const Vec3 exchanged = fDrag + exchangedOther;
       sum[0] += exchanged.x, sum[1] += exchanged.y, sum[2] += exchanged.z;
-      sum[3] += norm(exchanged);
+      exchangedSquared[q] = dot(exchanged, exchanged);
     }
+    double exchangedNorm[kBlock];  // |exchanged force|, added in particle order
+    squareRoots(exchangedSquared, exchangedNorm, count);
+    for (int q = 0; q < count; ++q) sum[3] += exchangedNorm[q];
     for (int c = 0; c < 4; ++c) sums[c] = sum[c];
   };
   // the particle side of the momentum balance (updateMomentumBalance) summed on the way, per
