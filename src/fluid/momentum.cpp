@@ -20,11 +20,13 @@ namespace {
 /// eq. 5.6, div(eps mu [(grad u)^T - 2/3 (div u) I]), is subtracted from N as well (it vanishes
 /// for constant eps and a divergence-free field, so the eps = 1 path skips it).
 /// div u per cell on the cells -1..n of every axis (one ghost layer: the periodic faces read it).
-void cellDivergence(const Field u[3], Field& out, int dims) {
+/// Lines [lineBegin, lineEnd) on the calling thread (lineEnd < 0: all lines, threaded); line =
+/// (j + 1) + (ny + 2) (k + 1).
+void cellDivergence(const Field u[3], Field& out, int dims, std::int64_t lineBegin, std::int64_t lineEnd) {
   const CartesianGrid& g = out.grid();
   const int ex = g.cells[0] + 2, ey = g.cells[1] + 2, ez = g.cells[2] + 2;
   double* D = out.data().data();
-  parallelFor(static_cast<std::int64_t>(ey) * ez, [&](std::int64_t line) {
+  forLines(static_cast<std::int64_t>(ey) * ez, lineBegin, lineEnd, [&](std::int64_t line) {
     const int j = static_cast<int>(line % ey) - 1, k = static_cast<int>(line / ey) - 1;
     const std::size_t d0 = out.index(-1, j, k);
     for (int i = -1; i < ex - 1; ++i) {
@@ -40,7 +42,8 @@ void cellDivergence(const Field u[3], Field& out, int dims) {
 
 template <bool TVD, bool UNIFORM, int DIMS>
 void convectionKernel(const Field u[3], const Field& eps, const std::vector<std::uint8_t>& mask, Field& out, int c,
-                      double rho, double mu, const Field& divergenceField) {
+                      double rho, double mu, const Field& divergenceField, std::int64_t lineBegin,
+                      std::int64_t lineEnd) {
   constexpr int dims = DIMS;  // compile-time: the direction loops unroll
   const Field& uc = u[c];
   const CartesianGrid& g = uc.grid();
@@ -53,7 +56,7 @@ void convectionKernel(const Field u[3], const Field& eps, const std::vector<std:
     su[d] = uc.stride(d);
     se[d] = eps.stride(d);
   }
-  parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
+  forLines(static_cast<std::int64_t>(pts[1]) * pts[2], lineBegin, lineEnd, [&](std::int64_t line) {
     const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
     const std::size_t f0 = uc.index(0, j, k), e0 = eps.index(0, j, k);
     std::size_t d0[3];
@@ -299,16 +302,31 @@ double jacobiSweepUniform(const Field& x, Field& y, const double* B, const Unifo
 
 }  // namespace
 
-void Solver::computeConvection(Field out[3]) {
+void Solver::computeCellDivergence(const PlaneSlab* slab) {
   const int dims = twoD_ ? 2 : 3;
-  if (!uniformCoupling_) {
+  if (!slab) {
     if (cellDivergence_.data().size() != p_.data().size()) cellDivergence_ = Field(grid_);
-    cellDivergence(u_, cellDivergence_, dims);
+    cellDivergence(u_, cellDivergence_, dims, 0, -1);
+    return;
   }
+  // Cells -1..n along y and z: line (j + 1) + (ny + 2)(k + 1); the first and last members also
+  // take the ghost planes k = -1 and k = nz.
+  const std::int64_t ey = grid_.cells[1] + 2;
+  const std::int64_t b = (slab->first ? 0 : slab->k0 + 1) * ey;
+  const std::int64_t e = (slab->last ? grid_.cells[2] + 2 : slab->k1 + 1) * ey;
+  cellDivergence(u_, cellDivergence_, dims, b, e);
+}
+
+void Solver::computeConvection(Field out[3], const PlaneSlab* slab) {
+  const int dims = twoD_ ? 2 : 3;
+  if (!uniformCoupling_ && !slab) computeCellDivergence(nullptr);
   const bool tvd = scheme_ == ConvectionScheme::VanLeer;
   auto run = [&](auto kernel) {
-    for (int c = 0; c < dims; ++c)
-      kernel(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, cellDivergence_);
+    for (int c = 0; c < dims; ++c) {
+      const auto& pts = u_[c].points();
+      kernel(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, cellDivergence_,
+             slab ? slab->lineBegin(pts) : 0, slab ? slab->lineEnd(pts) : -1);
+    }
   };
   auto byDims = [&](auto tvdC, auto uniformC) {
     constexpr bool T = decltype(tvdC)::value, U = decltype(uniformC)::value;
@@ -321,7 +339,8 @@ void Solver::computeConvection(Field out[3]) {
   else byDims(std::false_type{}, std::false_type{});
 }
 
-void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2, double e1, double e2) {
+void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2, double e1, double e2,
+                              std::int64_t lineBegin, std::int64_t lineEnd) {
   const Field& uc = u_[c];
   const auto& pts = uc.points();
   const double* U = uc.data().data();
@@ -346,7 +365,7 @@ void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2,
   if (uniformCoupling_) {
     // eps = eps_old = eps_older = 1 and K = 0 (ghosts included): the general expression below with
     // those values (same arithmetic; the drag term K u_p is an exact zero), without reading them.
-    parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
+    forLines(static_cast<std::int64_t>(pts[1]) * pts[2], lineBegin, lineEnd, [&](std::int64_t line) {
       const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
       const std::size_t f0 = uc.index(0, j, k), e0 = p_.index(0, j, k);
       for (int i = 0; i < pts[0]; ++i) {
@@ -363,7 +382,7 @@ void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2,
     });
     return;
   }
-  parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
+  forLines(static_cast<std::int64_t>(pts[1]) * pts[2], lineBegin, lineEnd, [&](std::int64_t line) {
     const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
     const std::size_t f0 = uc.index(0, j, k), e0 = p_.index(0, j, k);
     for (int i = 0; i < pts[0]; ++i) {
