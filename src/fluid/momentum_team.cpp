@@ -109,7 +109,8 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
   // and kTeamCellsPerThread cells.
   const std::int64_t cells = grid_.interiorCellCount();
   int team = std::min<std::int64_t>({gf::threadCount(), nz / 2, std::max<std::int64_t>(1, cells / kTeamCellsPerThread)});
-  team = std::max(team, 1);
+  team = momentumTeam_.pick(std::max(team, 1));
+  const double started = TeamTuner::now();
   if (cellDivergence_.data().size() != p_.data().size()) cellDivergence_ = Field(grid_);
   for (int c = 0; c < 3; ++c) {
     const auto& pts = u_[c].points();
@@ -238,6 +239,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
         inY[c] = inYLocal[c];
       }
   }
+  momentumTeam_.record(team, TeamTuner::now() - started);
   for (int c = 0; c < 3; ++c) {
     if (inY[c]) u_[c].data().swap(precY_[c].data());
     stats_.momentumIterations += iterations[c];
