@@ -5,6 +5,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "fluid/convection_varying.hpp"
 #include "fluid/loops.hpp"
 #include "fluid/schemes.hpp"
 #include "fluid/solver.hpp"
@@ -26,6 +27,7 @@ void cellDivergence(const Field u[3], Field& out, int dims, std::int64_t lineBeg
   const CartesianGrid& g = out.grid();
   const int ex = g.cells[0] + 2, ey = g.cells[1] + 2, ez = g.cells[2] + 2;
   double* D = out.data().data();
+  const double invH[3] = {1.0 / g.spacing[0], 1.0 / g.spacing[1], 1.0 / g.spacing[2]};
   forLines(static_cast<std::int64_t>(ey) * ez, lineBegin, lineEnd, [&](std::int64_t line) {
     const int j = static_cast<int>(line % ey) - 1, k = static_cast<int>(line / ey) - 1;
     const std::size_t d0 = out.index(-1, j, k);
@@ -33,7 +35,7 @@ void cellDivergence(const Field u[3], Field& out, int dims, std::int64_t lineBeg
       double dv = 0.0;
       for (int a = 0; a < dims; ++a) {
         const std::size_t fa = u[a].index(i, j, k);
-        dv += (u[a].data()[fa + u[a].stride(a)] - u[a].data()[fa]) / g.spacing[a];
+        dv += (u[a].data()[fa + u[a].stride(a)] - u[a].data()[fa]) * invH[a];
       }
       D[d0 + static_cast<std::size_t>(i + 1)] = dv;
     }
@@ -52,9 +54,11 @@ void convectionKernel(const Field u[3], const Field& eps, const std::vector<std:
   const double* E = eps.data().data();
   double* O = out.data().data();
   std::ptrdiff_t su[3], se[3];
+  double invH[3];  // eps-varying path: products with 1/h (divisions cost more than the rest)
   for (int d = 0; d < 3; ++d) {
     su[d] = uc.stride(d);
     se[d] = eps.stride(d);
+    invH[d] = 1.0 / g.spacing[d];
   }
   forLines(static_cast<std::int64_t>(pts[1]) * pts[2], lineBegin, lineEnd, [&](std::int64_t line) {
     const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
@@ -119,33 +123,58 @@ void convectionKernel(const Field u[3], const Field& eps, const std::vector<std:
         const std::ptrdiff_t s = su[d];
         const double qp = faceValue<TVD>(Fp, U[f - s], U[f], U[f + s], U[f + 2 * s]);
         const double qm = faceValue<TVD>(Fm, U[f - 2 * s], U[f - s], U[f], U[f + s]);
-        N += (Fp * qp - Fm * qm) / g.spacing[d];
+        if constexpr (UNIFORM) N += (Fp * qp - Fm * qm) / g.spacing[d];
+        else N += (Fp * qp - Fm * qm) * invH[d];
       }
       if constexpr (!UNIFORM) {
         // Explicit stress rest for component c:
         //   d/dx_c(eps du_c/dx_c) - 2/3 d/dx_c(eps div u) + sum_{d != c} d/dx_d(eps du_d/dx_c)
         // div u of the cells on both sides (cellDivergence: same arithmetic as in place).
         const double* Dv = divergenceField.data().data();
-        const double hc = g.spacing[c];
+        const double invHc = invH[c];
         const double divP = Dv[cc], divM = Dv[cm];
-        const double dP = (U[f + su[c]] - U[f]) / hc, dM = (U[f] - U[f - su[c]]) / hc;
-        double T = (E[cc] * (dP - 2.0 / 3.0 * divP) - E[cm] * (dM - 2.0 / 3.0 * divM)) / hc;
+        const double dP = (U[f + su[c]] - U[f]) * invHc, dM = (U[f] - U[f - su[c]]) * invHc;
+        double T = (E[cc] * (dP - 2.0 / 3.0 * divP) - E[cm] * (dM - 2.0 / 3.0 * divM)) * invHc;
         for (int d = 0; d < dims; ++d) {
           if (d == c) continue;
           const double* V = u[d].data().data();
           const std::ptrdiff_t vc = u[d].stride(c), vd = u[d].stride(d);
           const std::size_t idc = d0[d] + i, idm = idc - vc;
-          const double gp = (V[idc + vd] - V[idm + vd]) / hc;
-          const double gm = (V[idc] - V[idm]) / hc;
+          const double gp = (V[idc + vd] - V[idm + vd]) * invHc;
+          const double gm = (V[idc] - V[idm]) * invHc;
           const double ep = 0.25 * (E[cc] + E[cm] + E[cc + se[d]] + E[cm + se[d]]);
           const double em = 0.25 * (E[cc] + E[cm] + E[cc - se[d]] + E[cm - se[d]]);
-          T += (ep * gp - em * gm) / g.spacing[d];
+          T += (ep * gp - em * gm) * invH[d];
         }
         N -= mu * T;
       }
       O[f] = N;
     }
   });
+}
+
+/// convectionKernel<TVD, false, DIMS> with shared face fluxes (fluid/convection_varying.hpp): lines
+/// [lineBegin, lineEnd) on this thread, or (lineEnd < 0) all lines in one contiguous run per thread.
+template <bool TVD, int DIMS>
+void convectionVaryingKernel(const Field u[3], const Field& eps, const std::vector<std::uint8_t>& mask, Field& out,
+                             int c, double rho, double mu, const Field& divergenceField, std::int64_t lineBegin,
+                             std::int64_t lineEnd) {
+  if (lineEnd >= 0) {
+    VaryingConvection<TVD, DIMS>(u, eps, mask, out, c, rho, mu, divergenceField).run(lineBegin, lineEnd);
+    return;
+  }
+  const auto& pts = u[c].points();
+  const std::int64_t lines = static_cast<std::int64_t>(pts[1]) * pts[2];
+  if (lines < kSerialBelow || serialLoops()) {
+    VaryingConvection<TVD, DIMS>(u, eps, mask, out, c, rho, mu, divergenceField).run(0, lines);
+    return;
+  }
+#pragma omp parallel
+  {
+    const std::int64_t t = omp_get_thread_num(), team = omp_get_num_threads();
+    VaryingConvection<TVD, DIMS>(u, eps, mask, out, c, rho, mu, divergenceField)
+        .run(lines * t / team, lines * (t + 1) / team);
+  }
 }
 
 /// y = (rho gamma0 eps_f / dt + K_f) x - div(mu eps grad x) at the unknown faces of component c.
@@ -330,8 +359,13 @@ void Solver::computeConvection(Field out[3], const PlaneSlab* slab) {
   };
   auto byDims = [&](auto tvdC, auto uniformC) {
     constexpr bool T = decltype(tvdC)::value, U = decltype(uniformC)::value;
-    if (dims == 3) run(convectionKernel<T, U, 3>);
-    else run(convectionKernel<T, U, 2>);
+    if constexpr (U) {
+      if (dims == 3) run(convectionKernel<T, U, 3>);
+      else run(convectionKernel<T, U, 2>);
+    } else {
+      if (dims == 3) run(convectionVaryingKernel<T, 3>);
+      else run(convectionVaryingKernel<T, 2>);
+    }
   };
   if (tvd && uniformCoupling_) byDims(std::true_type{}, std::true_type{});
   else if (tvd) byDims(std::true_type{}, std::false_type{});
