@@ -17,9 +17,10 @@ namespace {
 /// N = div(rho eps u u_c) at the faces of component c (finite volume around the face; mass
 /// fluxes interpolated to the control-volume faces, transported value central or van Leer).
 ///
-/// Where eps varies (UNIFORM = false) the explicit rest of the viscous stress of seed 000
-/// eq. 5.6, div(eps mu [(grad u)^T - 2/3 (div u) I]), is subtracted from N as well (it vanishes
-/// for constant eps and a divergence-free field, so the eps = 1 path skips it).
+/// Where eps varies (convectionVaryingKernel, fluid/convection_varying.hpp) the explicit rest of
+/// the viscous stress of seed 000 eq. 5.6, div(eps mu [(grad u)^T - 2/3 (div u) I]), is
+/// subtracted from N as well (it vanishes for constant eps and a divergence-free field, so the
+/// eps = 1 path, convectionKernel, skips it).
 /// div u per cell on the cells -1..n of every axis (one ghost layer: the periodic faces read it).
 /// Lines [lineBegin, lineEnd) on the calling thread (lineEnd < 0: all lines, threaded); line =
 /// (j + 1) + (ny + 2) (k + 1).
@@ -42,37 +43,30 @@ void cellDivergence(const Field u[3], Field& out, int dims, std::int64_t lineBeg
   });
 }
 
-template <bool TVD, bool UNIFORM, int DIMS>
+template <bool TVD, int DIMS>
 void convectionKernel(const Field u[3], const Field& eps, const std::vector<std::uint8_t>& mask, Field& out, int c,
-                      double rho, double mu, const Field& divergenceField, std::int64_t lineBegin,
+                      double rho, double /*mu*/, const Field& /*divergenceField*/, std::int64_t lineBegin,
                       std::int64_t lineEnd) {
   constexpr int dims = DIMS;  // compile-time: the direction loops unroll
   const Field& uc = u[c];
   const CartesianGrid& g = uc.grid();
   const auto& pts = uc.points();
   const double* U = uc.data().data();
-  const double* E = eps.data().data();
   double* O = out.data().data();
-  std::ptrdiff_t su[3], se[3];
-  double invH[3];  // eps-varying path: products with 1/h (divisions cost more than the rest)
-  for (int d = 0; d < 3; ++d) {
-    su[d] = uc.stride(d);
-    se[d] = eps.stride(d);
-    invH[d] = 1.0 / g.spacing[d];
-  }
+  std::ptrdiff_t su[3];
+  for (int d = 0; d < 3; ++d) su[d] = uc.stride(d);
   forLines(static_cast<std::int64_t>(pts[1]) * pts[2], lineBegin, lineEnd, [&](std::int64_t line) {
     const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
-    const std::size_t f0 = uc.index(0, j, k), e0 = eps.index(0, j, k);
+    const std::size_t f0 = uc.index(0, j, k);
     std::size_t d0[3];
     for (int d = 0; d < 3; ++d) d0[d] = u[d].index(0, j, k);
-    // eps = 1: the x-direction flux F q through face i + 1/2 is point i's plus term and point
-    // i + 1's minus term (the same expression): computed once per face into a line buffer,
-    // xFlux[i + 1] for face i + 1/2 (i = -1 .. n-1).
+    // The x-direction flux F q through face i + 1/2 is point i's plus term and point i + 1's
+    // minus term (the same expression): computed once per face into a line buffer, xFlux[i + 1]
+    // for face i + 1/2 (i = -1 .. n-1).
     thread_local std::vector<double> xFluxBuffer;
-    double* xFlux = nullptr;
-    if constexpr (UNIFORM) {
-      xFluxBuffer.resize(static_cast<std::size_t>(pts[0]) + 1);
-      xFlux = xFluxBuffer.data();
+    xFluxBuffer.resize(static_cast<std::size_t>(pts[0]) + 1);
+    double* xFlux = xFluxBuffer.data();
+    {
       const double* V = u[0].data().data();
       const std::ptrdiff_t vc = u[0].stride(c);
       for (int i = -1; i < pts[0]; ++i) {
@@ -93,67 +87,31 @@ void convectionKernel(const Field u[3], const Field& eps, const std::vector<std:
         O[f] = 0.0;
         continue;
       }
-      const std::size_t cc = e0 + i, cm = cc - se[c];
-      double N = 0.0;
-      for (int d = 0; d < dims; ++d) {
-        if constexpr (UNIFORM) {
-          if (d == 0) {
-            N += (xFlux[i + 1] - xFlux[i]) / g.spacing[0];
-            continue;
-          }
-        }
+      double N = (xFlux[i + 1] - xFlux[i]) / g.spacing[0];
+      for (int d = 1; d < dims; ++d) {
         double Fp, Fm;
         if (d == c) {
-          Fp = rho * (UNIFORM ? 1.0 : E[cc]) * 0.5 * (U[f] + U[f + su[c]]);
-          Fm = rho * (UNIFORM ? 1.0 : E[cm]) * 0.5 * (U[f - su[c]] + U[f]);
+          Fp = rho * 1.0 * 0.5 * (U[f] + U[f + su[c]]);
+          Fm = rho * 1.0 * 0.5 * (U[f - su[c]] + U[f]);
         } else {
           const double* V = u[d].data().data();
           const std::ptrdiff_t vc = u[d].stride(c), vd = u[d].stride(d);
           const std::size_t idc = d0[d] + i, idm = idc - vc;
-          const double vp = 0.5 * (V[idc + vd] + V[idm + vd]);
-          const double vm = 0.5 * (V[idc] + V[idm]);
-          double ep = 1.0, em = 1.0;
-          if constexpr (!UNIFORM) {
-            ep = 0.25 * (E[cc] + E[cm] + E[cc + se[d]] + E[cm + se[d]]);
-            em = 0.25 * (E[cc] + E[cm] + E[cc - se[d]] + E[cm - se[d]]);
-          }
-          Fp = rho * ep * vp;
-          Fm = rho * em * vm;
+          Fp = rho * 1.0 * (0.5 * (V[idc + vd] + V[idm + vd]));
+          Fm = rho * 1.0 * (0.5 * (V[idc] + V[idm]));
         }
         const std::ptrdiff_t s = su[d];
         const double qp = faceValue<TVD>(Fp, U[f - s], U[f], U[f + s], U[f + 2 * s]);
         const double qm = faceValue<TVD>(Fm, U[f - 2 * s], U[f - s], U[f], U[f + s]);
-        if constexpr (UNIFORM) N += (Fp * qp - Fm * qm) / g.spacing[d];
-        else N += (Fp * qp - Fm * qm) * invH[d];
-      }
-      if constexpr (!UNIFORM) {
-        // Explicit stress rest for component c:
-        //   d/dx_c(eps du_c/dx_c) - 2/3 d/dx_c(eps div u) + sum_{d != c} d/dx_d(eps du_d/dx_c)
-        // div u of the cells on both sides (cellDivergence: same arithmetic as in place).
-        const double* Dv = divergenceField.data().data();
-        const double invHc = invH[c];
-        const double divP = Dv[cc], divM = Dv[cm];
-        const double dP = (U[f + su[c]] - U[f]) * invHc, dM = (U[f] - U[f - su[c]]) * invHc;
-        double T = (E[cc] * (dP - 2.0 / 3.0 * divP) - E[cm] * (dM - 2.0 / 3.0 * divM)) * invHc;
-        for (int d = 0; d < dims; ++d) {
-          if (d == c) continue;
-          const double* V = u[d].data().data();
-          const std::ptrdiff_t vc = u[d].stride(c), vd = u[d].stride(d);
-          const std::size_t idc = d0[d] + i, idm = idc - vc;
-          const double gp = (V[idc + vd] - V[idm + vd]) * invHc;
-          const double gm = (V[idc] - V[idm]) * invHc;
-          const double ep = 0.25 * (E[cc] + E[cm] + E[cc + se[d]] + E[cm + se[d]]);
-          const double em = 0.25 * (E[cc] + E[cm] + E[cc - se[d]] + E[cm - se[d]]);
-          T += (ep * gp - em * gm) * invH[d];
-        }
-        N -= mu * T;
+        N += (Fp * qp - Fm * qm) / g.spacing[d];
       }
       O[f] = N;
     }
   });
+  (void)eps;
 }
 
-/// convectionKernel<TVD, false, DIMS> with shared face fluxes (fluid/convection_varying.hpp): lines
+/// The eps-varying convection with shared face fluxes (fluid/convection_varying.hpp): lines
 /// [lineBegin, lineEnd) on this thread, or (lineEnd < 0) all lines in one contiguous run per thread.
 template <bool TVD, int DIMS>
 void convectionVaryingKernel(const Field u[3], const Field& eps, const std::vector<std::uint8_t>& mask, Field& out,
@@ -360,8 +318,8 @@ void Solver::computeConvection(Field out[3], const PlaneSlab* slab) {
   auto byDims = [&](auto tvdC, auto uniformC) {
     constexpr bool T = decltype(tvdC)::value, U = decltype(uniformC)::value;
     if constexpr (U) {
-      if (dims == 3) run(convectionKernel<T, U, 3>);
-      else run(convectionKernel<T, U, 2>);
+      if (dims == 3) run(convectionKernel<T, 3>);
+      else run(convectionKernel<T, 2>);
     } else {
       if (dims == 3) run(convectionVaryingKernel<T, 3>);
       else run(convectionVaryingKernel<T, 2>);
