@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/parallel.hpp"
+#include "fluid/team_tuner.hpp"
 
 namespace gf::fluid {
 
@@ -48,6 +49,25 @@ struct PlaneSlab {
   }
   int planeEnd(const std::array<int, 3>& points) const { return last ? points[2] : k1; }
 };
+
+/// Runs body(slab) once per member of a team of 1 or maxTeam threads (the tuner's choice), the
+/// members splitting `planes` z planes; the body must give the same result for any split.
+template <class Body>
+inline void runPlaneTeam(TeamTuner& tuner, int maxTeam, int planes, Body&& body) {
+  const int team = tuner.pick(maxTeam);
+  const double started = TeamTuner::now();
+#pragma omp parallel num_threads(team) if (team > 1)
+  {
+    const int t = team > 1 ? omp_get_thread_num() : 0;
+    PlaneSlab slab;
+    slab.k0 = planes * t / team;
+    slab.k1 = planes * (t + 1) / team;
+    slab.first = t == 0;
+    slab.last = t == team - 1;
+    body(static_cast<const PlaneSlab&>(slab));
+  }
+  tuner.record(team, TeamTuner::now() - started);
+}
 
 template <class Body>
 inline void parallelFor(std::int64_t n, Body&& body) {

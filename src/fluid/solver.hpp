@@ -180,7 +180,10 @@ class Solver {
   std::vector<double> krylov_[7];  // r, rhat, p, v, s, t, 1/diag
   Field precY_[3], precZ_[3];
   std::vector<double> linePartial_;  // per-line partial sums (deterministic reductions)
-  TeamTuner momentumTeam_;  // one thread or a team for predictMomentumTeam (speed only)
+  TeamTuner momentumTeam_;    // one thread or a team for predictMomentumTeam (speed only)
+  TeamTuner projectTeam_[2];  // project(): coefficients + right-hand side, correction + p update
+  /// Largest useful thread team for the plane-split phases of a small 3D grid (1: loop by loop).
+  int teamSize() const;
   std::vector<double> teamPartial_[3][3];  // momentum_team.cpp: per component, ||b||^2 and two sweep parities
   MultigridPoisson poisson_;
   double poissonKey_ = -1.0;  // rho gamma0 / dt of the current multigrid setup (-1: rebuild)
