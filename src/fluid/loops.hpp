@@ -59,11 +59,12 @@ inline void runPlaneTeam(TeamTuner& tuner, int maxTeam, int planes, Body&& body)
 #pragma omp parallel num_threads(team) if (team > 1)
   {
     const int t = team > 1 ? omp_get_thread_num() : 0;
+    const int members = team > 1 ? omp_get_num_threads() : 1;  // fewer than asked: still all planes
     PlaneSlab slab;
-    slab.k0 = planes * t / team;
-    slab.k1 = planes * (t + 1) / team;
+    slab.k0 = planes * t / members;
+    slab.k1 = planes * (t + 1) / members;
     slab.first = t == 0;
-    slab.last = t == team - 1;
+    slab.last = t == members - 1;
     body(static_cast<const PlaneSlab&>(slab));
   }
   tuner.record(team, TeamTuner::now() - started);

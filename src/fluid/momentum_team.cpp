@@ -134,11 +134,12 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
 #pragma omp parallel num_threads(team) if (team > 1)
   {
     const int t = team > 1 ? omp_get_thread_num() : 0;
+    const int members = team > 1 ? omp_get_num_threads() : 1;  // fewer than asked: still all planes
     PlaneSlab slab;
-    slab.k0 = nz * t / team;
-    slab.k1 = nz * (t + 1) / team;
+    slab.k0 = nz * t / members;
+    slab.k1 = nz * (t + 1) / members;
     slab.first = t == 0;
-    slab.last = t == team - 1;
+    slab.last = t == members - 1;
     // Flat range [begin, end) of this member's planes of a field (ghost rows included; the first
     // and last members also take the ghost planes): element-wise work on whole arrays.
     auto flatRange = [&](const Field& f) {

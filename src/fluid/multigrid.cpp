@@ -736,9 +736,10 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
 #pragma omp parallel num_threads(team) if (team > 1)
   {
     const int t = team > 1 ? omp_get_thread_num() : 0;
-    const std::int64_t lb = static_cast<std::int64_t>(ny) * (nz * t / team);
-    const std::int64_t le = static_cast<std::int64_t>(ny) * (nz * (t + 1) / team);
-    const int K0 = cz * t / team, K1 = cz * (t + 1) / team;
+    const int members = team > 1 ? omp_get_num_threads() : 1;  // fewer than asked: still all planes
+    const std::int64_t lb = static_cast<std::int64_t>(ny) * (nz * t / members);
+    const std::int64_t le = static_cast<std::int64_t>(ny) * (nz * (t + 1) / members);
+    const int K0 = cz * t / members, K1 = cz * (t + 1) / members;
     double* lineR = lineBuffer_.data() + stride * static_cast<std::size_t>(t);
     auto sum = [&](int which) {
       double s = 0.0;
