@@ -354,6 +354,8 @@ double Solver::stableTimeStep() const {
 }
 
 void Solver::cellVelocity(Field out[3]) const {
+  // Called by the coupling every fluid step: small grids loop serially, as in step().
+  const SerialFluidScope serial(grid_.interiorCellCount() < kSerialCellsBelow);
   for (int c = 0; c < 3; ++c) {
     if (out[c].data().size() != p_.data().size()) out[c] = Field(grid_);
     Field& o = out[c];
@@ -371,6 +373,7 @@ void Solver::cellVelocity(Field out[3]) const {
 }
 
 void Solver::pressureGradient(Field out[3]) const {
+  const SerialFluidScope serial(grid_.interiorCellCount() < kSerialCellsBelow);
   for (int c = 0; c < 3; ++c) {
     if (out[c].data().size() != p_.data().size()) out[c] = Field(grid_);
     Field& o = out[c];
