@@ -44,7 +44,7 @@ class TeamTuner {
   static double now() { return omp_get_wtime(); }
 
  private:
-  static constexpr int kWarmup = 8;
+  static constexpr int kWarmup = 4;
   static constexpr long kMinInterval = 64, kMaxInterval = 4096;
   long calls_ = 0, nextProbe_ = 0, interval_ = kMinInterval;
   bool probing_ = false;

@@ -9,6 +9,7 @@
 
 #include <omp.h>
 
+#include "fluid/team_tuner.hpp"
 #include "fluid_test_util.hpp"
 
 namespace gf::fluid {
@@ -68,7 +69,7 @@ BedRun runBed(int threads, int steps) {
 }
 
 TEST(FluidTeam, BedStepsAreBitIdenticalForOneAndTwoThreads) {
-  // 40 steps: the tuners alternate one thread and the team during their warm-up (8 calls each).
+  // 40 steps: the tuners alternate one thread and the team during their warm-up (4 calls each).
   const BedRun one = runBed(1, 40), two = runBed(2, 40);
   for (int a = 0; a < 3; ++a) EXPECT_EQ(one.u[a], two.u[a]) << "velocity component " << a;
   EXPECT_EQ(one.p, two.p);
@@ -80,6 +81,34 @@ TEST(FluidTeam, BedProjectionMeetsContinuity) {
   // the cell-wise maximum (the solver's residual is a 2-norm; 4e-9 measured).
   const BedRun two = runBed(2, 40);
   EXPECT_LT(two.maxDivergence, 1e-7 * 0.55 / 2e-5);
+}
+
+}  // namespace
+}  // namespace gf::fluid
+
+namespace gf::fluid {
+namespace {
+
+TEST(TeamTuner, KeepsTheFasterChoiceAndProbesTheOther) {
+  // Synthetic timings: the team takes 1 ms, one thread 3 ms (idle machine), then the team
+  // becomes slow (20 ms: an oversubscribed machine) and the tuner must switch to one thread.
+  TeamTuner tuner;
+  auto simulate = [&](double teamSeconds, double serialSeconds, int calls) -> int {
+    int teamCalls = 0;
+    for (int n = 0; n < calls; ++n) {
+      const int team = tuner.pick(2);
+      EXPECT_TRUE(team == 1 || team == 2);
+      tuner.record(team, team == 2 ? teamSeconds : serialSeconds);
+      teamCalls += team == 2;
+    }
+    return teamCalls;
+  };
+  EXPECT_EQ(tuner.pick(1), 1);  // nothing to choose
+  const int idleTeamCalls = simulate(1e-3, 3e-3, 1000);
+  EXPECT_GT(idleTeamCalls, 960);  // warm-up (4 serial calls) and rare serial probes only
+  const int busyTeamCalls = simulate(20e-3, 3e-3, 1000);
+  EXPECT_LT(busyTeamCalls, 40);  // switched after a few calls, probes back off (64, 128, ...)
+  EXPECT_GT(busyTeamCalls, 0);   // but still probes the team
 }
 
 }  // namespace
