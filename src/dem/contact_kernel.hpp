@@ -249,6 +249,26 @@ struct BlockSweep {
                                 : i + 1);
   }
 
+  /// Requests the data the gather reads of the far partners of row a (index beyond
+  /// kNearPartners ahead of a), some rows before the gather needs them. Near partners come with
+  /// the rows' own streams; a far one is a cache miss per array (at 1e6 particles the partner
+  /// loads were ~60 % of the gather's time). Rows hold ascending partners: the far ones are last.
+  static constexpr std::size_t kPrefetchRows = 16, kNearPartners = 128;
+  [[gnu::always_inline]] void prefetchFarPartners(std::size_t a) const {
+    if (a >= end) return;
+    const std::uint32_t first = rowStart[a];
+    for (std::uint32_t k = rowStart[a + 1]; k > first;) {
+      const std::uint32_t j = partner[--k];
+      if (j < a + kNearPartners) break;
+      __builtin_prefetch(position + j);
+      __builtin_prefetch(radius + j);
+      __builtin_prefetch(velocity + j);
+      __builtin_prefetch(angularVelocity + j);
+      __builtin_prefetch(mass + j);
+      __builtin_prefetch(type + j);
+    }
+  }
+
   /// Appends the touching pairs among entries [from, to) of row i to the batch (with their
   /// history) and clears the history of all.
   [[gnu::always_inline]] void gatherRow(std::size_t i, std::uint32_t from, std::uint32_t to) {
@@ -388,13 +408,24 @@ struct BlockSweep {
     batch->uniform = true;
   }
 
+  /// Blocks of fewer rows than this fit the caches (with the lists, ~350 B per particle) and
+  /// skip the prefetching (its exits cost more than it saves there: +10 % at 15,000 particles).
+  static constexpr std::size_t kPrefetchFromRows = 50000;
+
   void run() {
+    if (end - begin >= kPrefetchFromRows) runRows<true>();
+    else runRows<false>();
+  }
+
+  template <bool Prefetch>
+  void runRows() {
     constexpr std::uint32_t capacity = ContactBatch::kCapacity;
     std::uint32_t rowEnd[capacity];  // end in the batch of row runBegin + r
     std::size_t runBegin = begin, runEnd = begin;
     batch->size = 0;
     batch->uniform = true;
     for (std::size_t i = begin; i < end; ++i) {
+      if constexpr (Prefetch) prefetchFarPartners(i + kPrefetchRows);
       const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
       const std::uint32_t length = last - first;
       if (length == 0 && runBegin == runEnd) {
