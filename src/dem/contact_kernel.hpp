@@ -242,18 +242,14 @@ struct BlockSweep {
       }
     initialised = std::max(initialised, stop);
   }
-  /// Before row i adds to its partners: body forces of all particles up to its last partner.
-  [[gnu::always_inline]] void initialiseForRow(std::size_t i) {
-    const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
-    initialiseUpTo(first < last ? std::min<std::size_t>(end, std::max<std::size_t>(i, partner[last - 1]) + 1)
-                                : i + 1);
-  }
-
   /// Requests the data the gather reads of the far partners of row a (index beyond
   /// kNearPartners ahead of a), some rows before the gather needs them. Near partners come with
   /// the rows' own streams; a far one is a cache miss per array (at 1e6 particles the partner
   /// loads were ~60 % of the gather's time). Rows hold ascending partners: the far ones are last.
   static constexpr std::size_t kPrefetchRows = 16, kNearPartners = 128;
+  /// Blocks of fewer rows than this fit the caches (with the lists, ~350 B per particle) and
+  /// skip the prefetching (its exits cost more than it saves there: +10 % at 15,000 particles).
+  static constexpr std::size_t kPrefetchFromRows = 50000;
   [[gnu::always_inline]] void prefetchFarPartners(std::size_t a) const {
     if (a >= end) return;
     const std::uint32_t first = rowStart[a];
@@ -269,57 +265,60 @@ struct BlockSweep {
     }
   }
 
-  /// Appends the touching pairs among entries [from, to) of row i to the batch (with their
-  /// history) and clears the history of all.
-  [[gnu::always_inline]] void gatherRow(std::size_t i, std::uint32_t from, std::uint32_t to) {
+  /// Gathers the touching pairs among the candidates [base, base + count) of the rows of a run
+  /// (rows [rb, ...), `b.owner[c]`: the run's row of candidate c) into the batch, with their
+  /// history, and clears the history of all candidates. One flat loop over the candidates of all
+  /// rows and one over the touching pairs: a loop exit per batch instead of two per row (a
+  /// mispredicted branch each, rows hold ~6 candidates).
+  [[gnu::always_inline]] void gatherRun(std::size_t rb, std::uint32_t base, std::uint32_t count,
+                                        std::uint32_t start) {
     ContactBatch& b = *batch;
-    const Vec3* const x = position;
-    const Vec3* const v = velocity;
-    const Vec3* const w = angularVelocity;
+    const Vec3* const x = position + rb;
+    const Vec3* const v = velocity + rb;
+    const Vec3* const w = angularVelocity + rb;
     const double* const r = radius;
-    const std::uint32_t* const partnerOf = partner;
-    Vec3* const h = history;
-    const Vec3 xi = x[i], vi = v[i], wi = w[i];
-    const double ri = r[i], mi = mass[i];
-    const std::uint32_t start = b.size;
+    const double* const ri = radius + rb;
+    const double* const mi = mass + rb;
+    const std::uint32_t* const partnerOf = partner + base;
+    Vec3* const h = history + base;
     std::uint32_t m = start;
-    for (std::uint32_t k = from; k < to; ++k) {
-      const std::uint32_t j = partnerOf[k];
-      const Vec3 d = box.minimumImage(xi - x[j]);
+    for (std::uint32_t c = 0; c < count; ++c) {
+      const std::uint32_t row = b.owner[c];
+      const std::uint32_t j = partnerOf[c];
+      const Vec3 d = box.minimumImage(x[row] - position[j]);
       const double rj = r[j];
       const double dist2 = normSquared(d);
-      const double rsum = ri + rj;
-      b.entry[m] = k;
+      const double rsum = ri[row] + rj;
+      b.entry[m] = base + c;
+      b.row[m] = row;
       b.partner[m] = j;
       b.dx[m] = d.x;
       b.dy[m] = d.y;
       b.dz[m] = d.z;
       b.rj[m] = rj;
       // History travels with the entry; the list keeps zero (pairs not in contact lose their
-      // history; the touching ones get theirs back in scatterEntries).
-      const Vec3 hk = h[k];
+      // history; the touching ones get theirs back in scatterRun).
+      const Vec3 hk = h[c];
       b.hx[m] = hk.x;
       b.hy[m] = hk.y;
       b.hz[m] = hk.z;
-      h[k] = Vec3{};
+      h[c] = Vec3{};
       m += !(dist2 >= rsum * rsum) ? 1u : 0u;  // touching: keep the entry
     }
-    const std::uint32_t rowPair = static_cast<std::uint32_t>(type[i]) * types;
     bool uniform = b.uniform;
     std::uint32_t firstPair = start > 0 ? b.pairIndex[0] : 0;
     for (std::uint32_t e = start; e < m; ++e) {
-      const std::uint32_t j = b.partner[e];
+      const std::uint32_t j = b.partner[e], row = b.row[e];
       if constexpr (R == RollingLaw::Epsd) {
-        const std::uint32_t k = b.entry[e];
-        const Vec3 rh = rollingHistory[k];
+        const Vec3 rh = rollingHistory[b.entry[e]];
         b.rhx[e] = rh.x;
         b.rhy[e] = rh.y;
         b.rhz[e] = rh.z;
       }
-      const double rj = b.rj[e];
-      const Vec3 wj = w[j];
-      const Vec3 dv = vi - v[j];
-      const Vec3 s = ri * wi + rj * wj;
+      const double rj = b.rj[e], rowRadius = ri[row];
+      const Vec3 wi = w[row], wj = angularVelocity[j];
+      const Vec3 dv = v[row] - velocity[j];
+      const Vec3 s = rowRadius * wi + rj * wj;
       b.dvx[e] = dv.x;
       b.dvy[e] = dv.y;
       b.dvz[e] = dv.z;
@@ -332,10 +331,10 @@ struct BlockSweep {
         b.dwy[e] = dw.y;
         b.dwz[e] = dw.z;
       }
-      b.ri[e] = ri;
-      b.mi[e] = mi;
+      b.ri[e] = rowRadius;
+      b.mi[e] = mi[row];
       b.mj[e] = mass[j];
-      const std::uint32_t pair = rowPair + static_cast<std::uint32_t>(type[j]);
+      const std::uint32_t pair = static_cast<std::uint32_t>(type[rb + row]) * types + static_cast<std::uint32_t>(type[j]);
       b.pairIndex[e] = pair;
       if (e == 0) firstPair = pair;
       uniform = uniform && pair == firstPair;
@@ -343,23 +342,24 @@ struct BlockSweep {
     b.uniform = uniform;
     b.size = m;
     if constexpr (R == RollingLaw::Epsd)
-      for (std::uint32_t k = from; k < to; ++k) rollingHistory[k] = Vec3{};
+      for (std::uint32_t c = 0; c < count; ++c) rollingHistory[base + c] = Vec3{};
   }
 
-  /// Adds the evaluated pairs [from, to) of one row: to i (fi, tqi) and to the partners.
-  [[gnu::always_inline]] void scatterEntries(std::uint32_t from, std::uint32_t to, Vec3& fi, Vec3& tqi) {
-    const ContactBatch& b = *batch;
+  /// Adds the evaluated pairs of the batch in list order: to their row's sum (b.rowForce/Torque,
+  /// added to the row's particle in finishRun) and to the partners.
+  [[gnu::always_inline]] void scatterRun() {
+    ContactBatch& b = *batch;
     Vec3* const f = force;
     Vec3* const tq = torque;
     Vec3* const h = history;
     const std::uint32_t blockEnd = static_cast<std::uint32_t>(end);
-    Vec3 sumF = fi, sumT = tqi;
-    for (std::uint32_t e = from; e < to; ++e) {
-      const std::uint32_t j = b.partner[e], k = b.entry[e];
+    const std::uint32_t count = b.size;
+    for (std::uint32_t e = 0; e < count; ++e) {
+      const std::uint32_t j = b.partner[e], k = b.entry[e], row = b.row[e];
       const Vec3 fe{b.fx[e], b.fy[e], b.fz[e]};
       const Vec3 tqj{b.tjx[e], b.tjy[e], b.tjz[e]};
-      sumF += fe;
-      sumT += Vec3{b.tix[e], b.tiy[e], b.tiz[e]};
+      b.rowForce[row] += fe;
+      b.rowTorque[row] += Vec3{b.tix[e], b.tiy[e], b.tiz[e]};
       h[k] = Vec3{b.hx[e], b.hy[e], b.hz[e]};
       if constexpr (R == RollingLaw::Epsd) rollingHistory[k] = Vec3{b.rhx[e], b.rhy[e], b.rhz[e]};
       if (j < blockEnd) {
@@ -372,8 +372,6 @@ struct BlockSweep {
         touchedHi = std::max(touchedHi, j + 1);
       }
     }
-    fi = sumF;
-    tqi = sumT;
   }
 
   /// Completes row i: its own sum, its wall contacts and (first block) its kick.
@@ -392,73 +390,91 @@ struct BlockSweep {
     }
   }
 
-  /// Evaluates the batch and completes rows [runBegin, runEnd) (rowEnd: their ends in the batch).
-  void flush(std::size_t runBegin, std::size_t runEnd, const std::uint32_t* rowEnd) {
-    evaluateBatch<N, R, C>(*batch, coefficients, dt);
-    std::uint32_t e = 0;
-    for (std::size_t i = runBegin; i < runEnd; ++i) {
-      initialiseForRow(i);
-      Vec3 fi{}, tqi{};
-      const std::uint32_t stop = rowEnd[i - runBegin];
-      scatterEntries(e, stop, fi, tqi);
-      e = stop;
-      finishRow(i, fi, tqi);
-    }
-    batch->size = 0;
-    batch->uniform = true;
+  /// Completes a run of rows [rb, re) whose pairs were all scattered: each row's sum, walls, kick.
+  [[gnu::always_inline]] void finishRun(std::size_t rb, std::size_t re) {
+    const ContactBatch& b = *batch;
+    for (std::size_t i = rb; i < re; ++i) finishRow(i, b.rowForce[i - rb], b.rowTorque[i - rb]);
   }
 
-  /// Blocks of fewer rows than this fit the caches (with the lists, ~350 B per particle) and
-  /// skip the prefetching (its exits cost more than it saves there: +10 % at 15,000 particles).
-  static constexpr std::size_t kPrefetchFromRows = 50000;
+  /// The rows [rb, re) (candidates [base, base + count), count <= capacity): owners, gather,
+  /// evaluation, body forces up to the last partner, scatter, completion. The additions to each
+  /// force happen in the same order as one row and one contact at a time.
+  void processRun(std::size_t rb, std::size_t re, std::uint32_t maxPartner) {
+    ContactBatch& b = *batch;
+    const std::uint32_t base = rowStart[rb], count = rowStart[re] - base;
+    // Owner of each candidate: kRowFill stores per row without a loop (the next row overwrites
+    // the excess); longer rows finish in a loop.
+    for (std::size_t i = rb; i < re; ++i) {
+      const std::uint32_t from = rowStart[i] - base, length = rowStart[i + 1] - rowStart[i];
+      const std::uint32_t row = static_cast<std::uint32_t>(i - rb);
+      for (std::uint32_t q = 0; q < ContactBatch::kRowFill; ++q) b.owner[from + q] = row;
+      for (std::uint32_t q = ContactBatch::kRowFill; q < length; ++q) b.owner[from + q] = row;
+    }
+    b.size = 0;
+    b.uniform = true;
+    gatherRun(rb, base, count, 0);
+    evaluateBatch<N, R, C>(b, coefficients, dt);
+    initialiseUpTo(std::min<std::size_t>(end, std::max<std::size_t>(re, std::size_t{maxPartner} + 1)));
+    for (std::size_t r = 0; r < re - rb; ++r) b.rowForce[r] = b.rowTorque[r] = Vec3{};
+    scatterRun();
+    finishRun(rb, re);
+  }
+
+  /// A row longer than a batch (a large particle among small ones): evaluated in pieces.
+  void processLongRow(std::size_t i) {
+    ContactBatch& b = *batch;
+    const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
+    constexpr std::uint32_t capacity = ContactBatch::kCapacity;
+    initialiseUpTo(std::min<std::size_t>(end, std::size_t{partner[last - 1]} + 1));
+    b.rowForce[0] = b.rowTorque[0] = Vec3{};
+    for (std::uint32_t q = 0; q < capacity; ++q) b.owner[q] = 0;
+    for (std::uint32_t from = first; from < last; from += capacity) {
+      b.size = 0;
+      b.uniform = true;
+      gatherRun(i, from, std::min(last - from, capacity), 0);
+      evaluateBatch<N, R, C>(b, coefficients, dt);
+      scatterRun();
+    }
+    finishRun(i, i + 1);
+  }
 
   void run() {
     if (end - begin >= kPrefetchFromRows) runRows<true>();
     else runRows<false>();
   }
 
+  /// Rows in runs of at most kCapacity candidates and kCapacity rows.
   template <bool Prefetch>
   void runRows() {
     constexpr std::uint32_t capacity = ContactBatch::kCapacity;
-    std::uint32_t rowEnd[capacity];  // end in the batch of row runBegin + r
-    std::size_t runBegin = begin, runEnd = begin;
-    batch->size = 0;
-    batch->uniform = true;
-    for (std::size_t i = begin; i < end; ++i) {
+    std::size_t i = begin;
+    while (i < end) {
+      const std::uint32_t base = rowStart[i];
+      const std::uint32_t length = rowStart[i + 1] - base;
       if constexpr (Prefetch) prefetchFarPartners(i + kPrefetchRows);
-      const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
-      const std::uint32_t length = last - first;
-      if (length == 0 && runBegin == runEnd) {
+      if (length == 0) {
         // No neighbours and nothing pending (free flight): complete the row at once.
         initialiseUpTo(i + 1);
         finishRow(i, Vec3{}, Vec3{});
-        runBegin = runEnd = i + 1;
+        ++i;
         continue;
-      }
-      if (batch->size + length > capacity || runEnd - runBegin == capacity) {
-        flush(runBegin, runEnd, rowEnd);
-        runBegin = runEnd;
       }
       if (length > capacity) {
-        // A row longer than a batch (a large particle among small ones): evaluated in pieces.
-        initialiseForRow(i);
-        Vec3 fi{}, tqi{};
-        for (std::uint32_t from = first; from < last; from += capacity) {
-          gatherRow(i, from, std::min(last, from + capacity));
-          evaluateBatch<N, R, C>(*batch, coefficients, dt);
-          scatterEntries(0, batch->size, fi, tqi);
-          batch->size = 0;
-          batch->uniform = true;
-        }
-        finishRow(i, fi, tqi);
-        runBegin = runEnd = i + 1;
+        processLongRow(i);
+        ++i;
         continue;
       }
-      if (length > 0) gatherRow(i, first, last);
-      rowEnd[runEnd - runBegin] = batch->size;
-      ++runEnd;
+      std::uint32_t maxPartner = partner[base + length - 1];
+      std::size_t re = i + 1;
+      while (re < end && re - i < capacity && rowStart[re + 1] - base <= capacity) {
+        if constexpr (Prefetch) prefetchFarPartners(re + kPrefetchRows);
+        // An empty row's "last entry" is the previous row's: the maximum is unchanged.
+        maxPartner = std::max(maxPartner, partner[rowStart[re + 1] - 1]);
+        ++re;
+      }
+      processRun(i, re, maxPartner);
+      i = re;
     }
-    flush(runBegin, runEnd, rowEnd);
     initialiseUpTo(end);
   }
 };
