@@ -24,7 +24,7 @@ namespace gf::dem {
 /// Scratch arrays of one batch (per thread; fixed size, so that the compiler sees that the arrays
 /// do not overlap). Inputs are filled by the gather, outputs by evaluateBatch().
 struct ContactBatch {
-  static constexpr std::uint32_t kCapacity = 128;  // candidates (neighbour-list entries) per batch
+  static constexpr std::uint32_t kCapacity = 256;  // candidates (neighbour-list entries) per batch
   static constexpr std::uint32_t kRowFill = 8;     // owner entries written per row without a loop
 
   std::uint32_t size = 0;  // touching pairs gathered
