@@ -14,6 +14,7 @@
 #include "dem/contact/contact_batch.hpp"
 #include "dem/contact/contact_force.hpp"
 #include "dem/contact/contact_table.hpp"
+#include "dem/contact/wall_batch.hpp"
 #include "dem/neighbour_list.hpp"
 #include "dem/particles.hpp"
 #include "dem/wall_contact_list.hpp"
@@ -225,6 +226,9 @@ struct BlockSweep {
   std::uint32_t touchedLo, touchedHi;
   std::size_t initialised;  // force/torque of [begin, initialised) hold the body forces
   ContactBatch* batch;
+  // Wall contacts in batches (walls without triangle meshes).
+  WallBatch* wallBatch;
+  bool batchWalls;
 
   [[gnu::always_inline]] void initialiseUpTo(std::size_t stop) {
     std::size_t k = initialised;
@@ -390,10 +394,141 @@ struct BlockSweep {
     }
   }
 
+  /// Gathers the touching wall entries of rows [rb, re) into the wall batch (geometry as in
+  /// wallContactsOfParticle) and clears history and force of all entries (the touching ones get
+  /// theirs back in scatterWalls). False if the run has more entries than a batch holds.
+  bool gatherWalls(std::size_t rb, std::size_t re) {
+    WallBatch& b = *wallBatch;
+    const std::uint32_t base = wallRowStart[rb], count = wallRowStart[re] - base;
+    b.size = 0;
+    b.uniform = true;
+    if (count > WallBatch::kCapacity) return false;
+    if (count == 0) return true;
+    for (std::size_t i = rb; i < re; ++i) {
+      const std::uint32_t from = wallRowStart[i] - base, length = wallRowStart[i + 1] - wallRowStart[i];
+      const std::uint32_t row = static_cast<std::uint32_t>(i - rb);
+      for (std::uint32_t q = 0; q < WallBatch::kRowFill; ++q) b.owner[from + q] = row;
+      for (std::uint32_t q = WallBatch::kRowFill; q < length; ++q) b.owner[from + q] = row;
+    }
+    WallContactList& list = *wallList;
+    const WallPrimitive* const primitives = walls->primitives->data();
+    const std::uint32_t* const primitiveOf = list.primitive.data() + base;
+    Vec3* const h = list.tangentialHistory.data() + base;
+    Vec3* const rh = R == RollingLaw::Epsd ? list.rollingHistory.data() + base : nullptr;
+    Vec3* const listForce = list.force.data() + base;
+    std::uint32_t m = 0;
+    for (std::uint32_t c = 0; c < count; ++c) {
+      const std::uint32_t row = b.owner[c];
+      const std::size_t i = rb + row;
+      const WallPrimitive& prim = primitives[primitiveOf[c]];
+      const Vec3 xi = position[i];
+      const WallDistance wd = prim.active ? distanceToPrimitive(prim, xi) : WallDistance{1e300, {}};
+      const double ri = radius[i];
+      const Vec3 contactPoint = xi - wd.distance * wd.normal;
+      b.entry[m] = base + c;
+      b.row[m] = row;
+      b.pairIndex[m] = static_cast<std::uint32_t>(prim.wall);  // the wall until the second pass
+      b.nx[m] = wd.normal.x;
+      b.ny[m] = wd.normal.y;
+      b.nz[m] = wd.normal.z;
+      b.overlap[m] = ri - wd.distance;
+      b.px[m] = contactPoint.x;
+      b.py[m] = contactPoint.y;
+      b.pz[m] = contactPoint.z;
+      const Vec3 hk = h[c];
+      b.hx[m] = hk.x;
+      b.hy[m] = hk.y;
+      b.hz[m] = hk.z;
+      h[c] = Vec3{};
+      if constexpr (R == RollingLaw::Epsd) {
+        const Vec3 r = rh[c];
+        b.rhx[m] = r.x;
+        b.rhy[m] = r.y;
+        b.rhz[m] = r.z;
+        rh[c] = Vec3{};
+      }
+      listForce[c] = Vec3{};
+      m += !(wd.distance >= ri) ? 1u : 0u;  // touching: keep the entry
+    }
+    const Vec3* const wallVelocity = walls->velocity->data();
+    const Vec3* const wallAngularVelocity = walls->angularVelocity->data();
+    const Vec3* const wallCentre = walls->centre->data();
+    const int* const wallMaterial = walls->material->data();
+    bool uniform = true;
+    std::uint32_t firstPair = 0;
+    for (std::uint32_t e = 0; e < m; ++e) {
+      const std::size_t i = rb + b.row[e];
+      const std::uint32_t w = b.pairIndex[e];
+      const Vec3 n{b.nx[e], b.ny[e], b.nz[e]};
+      const Vec3 contactPoint{b.px[e], b.py[e], b.pz[e]};
+      const Vec3 ww = wallAngularVelocity[w];
+      const Vec3 wallPointVelocity = wallVelocity[w] + cross(ww, contactPoint - wallCentre[w]);
+      const Vec3 vi = velocity[i], wi = angularVelocity[i];
+      const double ri = radius[i], mi = mass[i];
+      const Vec3 relativeVelocity = vi - ri * cross(wi, n) - wallPointVelocity;
+      b.vx[e] = relativeVelocity.x;
+      b.vy[e] = relativeVelocity.y;
+      b.vz[e] = relativeVelocity.z;
+      if constexpr (R != RollingLaw::None) {
+        const Vec3 dw = wi - ww;
+        b.wx[e] = dw.x;
+        b.wy[e] = dw.y;
+        b.wz[e] = dw.z;
+      }
+      b.ri[e] = ri;
+      b.mi[e] = mi;
+      if constexpr (R == RollingLaw::Epsd) b.inertia[e] = 1.4 * mi * ri * ri;
+      const std::uint32_t pair = static_cast<std::uint32_t>(type[i]) * types + static_cast<std::uint32_t>(wallMaterial[w]);
+      b.pairIndex[e] = pair;
+      if (e == 0) firstPair = pair;
+      uniform = uniform && pair == firstPair;
+    }
+    b.uniform = uniform;
+    b.size = m;
+    return true;
+  }
+
+  /// Adds the evaluated wall contacts in list order to their particles and records them.
+  [[gnu::always_inline]] void scatterWalls(std::size_t rb) {
+    const WallBatch& b = *wallBatch;
+    WallContactList& list = *wallList;
+    Vec3* const h = list.tangentialHistory.data();
+    Vec3* const rh = list.rollingHistory.data();
+    Vec3* const listForce = list.force.data();
+    Vec3* const listPoint = list.point.data();
+    for (std::uint32_t e = 0; e < b.size; ++e) {
+      const std::size_t i = rb + b.row[e];
+      const std::uint32_t k = b.entry[e];
+      const Vec3 f{b.fx[e], b.fy[e], b.fz[e]};
+      force[i] += f;
+      torque[i] += Vec3{b.tx[e], b.ty[e], b.tz[e]};
+      listForce[k] = f;
+      listPoint[k] = {b.px[e], b.py[e], b.pz[e]};
+      h[k] = {b.hx[e], b.hy[e], b.hz[e]};
+      if constexpr (R == RollingLaw::Epsd) rh[k] = {b.rhx[e], b.rhy[e], b.rhz[e]};
+    }
+  }
+
   /// Completes a run of rows [rb, re) whose pairs were all scattered: each row's sum, walls, kick.
-  [[gnu::always_inline]] void finishRun(std::size_t rb, std::size_t re) {
+  /// Batched walls: sums of all rows, then the wall contacts, then the kicks (each touches only
+  /// its own particle: the same order of additions per particle as row by row).
+  [[gnu::always_inline]] void finishRun(std::size_t rb, std::size_t re, bool wallsGathered) {
     const ContactBatch& b = *batch;
-    for (std::size_t i = rb; i < re; ++i) finishRow(i, b.rowForce[i - rb], b.rowTorque[i - rb]);
+    if (!wallsGathered) {
+      for (std::size_t i = rb; i < re; ++i) finishRow(i, b.rowForce[i - rb], b.rowTorque[i - rb]);
+      return;
+    }
+    for (std::size_t i = rb; i < re; ++i)
+      if (rowStart[i] < rowStart[i + 1]) {
+        force[i] += b.rowForce[i - rb];
+        torque[i] += b.rowTorque[i - rb];
+      }
+    scatterWalls(rb);
+    if (kickHere)
+      for (std::size_t i = rb; i < re; ++i) {
+        velocity[i] += (halfKick * inverseMass[i]) * force[i];
+        angularVelocity[i] += (halfKick * inverseMoment[i]) * torque[i];
+      }
   }
 
   /// The rows [rb, re) (candidates [base, base + count), count <= capacity): owners, gather,
@@ -414,10 +549,12 @@ struct BlockSweep {
     b.uniform = true;
     gatherRun(rb, base, count, 0);
     evaluateBatch<N, R, C>(b, coefficients, dt);
+    const bool wallsGathered = batchWalls && gatherWalls(rb, re);
+    if (wallsGathered) evaluateWallBatch<N, R, C>(*wallBatch, coefficients, dt);
     initialiseUpTo(std::min<std::size_t>(end, std::max<std::size_t>(re, std::size_t{maxPartner} + 1)));
     for (std::size_t r = 0; r < re - rb; ++r) b.rowForce[r] = b.rowTorque[r] = Vec3{};
     scatterRun();
-    finishRun(rb, re);
+    finishRun(rb, re, wallsGathered);
   }
 
   /// A row longer than a batch (a large particle among small ones): evaluated in pieces.
@@ -435,7 +572,7 @@ struct BlockSweep {
       evaluateBatch<N, R, C>(b, coefficients, dt);
       scatterRun();
     }
-    finishRun(i, i + 1);
+    finishRun(i, i + 1, false);
   }
 
   void run() {
@@ -520,6 +657,7 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
   common.halfKick = halfKick;
   common.external = p.hasExternalForces;
   common.withWalls = !walls.primitives->empty();
+  common.batchWalls = common.withWalls && !walls.hasTriangles;
   Vec3* force = p.force.data();
   Vec3* torque = p.torque.data();
   Vec3* velocity = p.velocity.data();
@@ -536,6 +674,7 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
     const int team = omp_get_num_threads();
     const std::size_t begin = n * t / team, end = n * (t + 1) / team;
     thread_local ContactBatch batch;
+    thread_local WallBatch wallBatch;
     BlockSweep<N, R, C> sweep = common;
     sweep.begin = begin;
     sweep.end = end;
@@ -546,6 +685,7 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
     sweep.touchedHi = 0;
     sweep.kickHere = t == 0 && halfKick != 0.0;
     sweep.batch = &batch;
+    sweep.wallBatch = &wallBatch;
     sweep.run();
     const std::uint32_t touchedLo = sweep.touchedLo, touchedHi = sweep.touchedHi;
     if (t < team - 1) {
