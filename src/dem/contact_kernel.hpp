@@ -67,6 +67,7 @@ struct WallState {
   const std::vector<Vec3>* angularVelocity;
   const std::vector<Vec3>* centre;     // per wall, current
   bool hasTriangles = false;           // any triangle primitive (mesh contacts are de-duplicated)
+  bool allPlanes = false;              // every primitive a plane (box walls, distributor plates)
 };
 
 /// A touching triangle of a mesh, before de-duplication.
@@ -397,6 +398,7 @@ struct BlockSweep {
   /// Gathers the touching wall entries of rows [rb, re) into the wall batch (geometry as in
   /// wallContactsOfParticle) and clears history and force of all entries (the touching ones get
   /// theirs back in scatterWalls). False if the run has more entries than a batch holds.
+  template <bool AllPlanes>
   bool gatherWalls(std::size_t rb, std::size_t re) {
     WallBatch& b = *wallBatch;
     const std::uint32_t base = wallRowStart[rb], count = wallRowStart[re] - base;
@@ -422,7 +424,10 @@ struct BlockSweep {
       const std::size_t i = rb + row;
       const WallPrimitive& prim = primitives[primitiveOf[c]];
       const Vec3 xi = position[i];
-      const WallDistance wd = prim.active ? distanceToPrimitive(prim, xi) : WallDistance{1e300, {}};
+      // (planes: distanceToPrimitive's plane case inline, no dispatch on the kind)
+      const WallDistance wd = !prim.active ? WallDistance{1e300, {}}
+                              : AllPlanes  ? WallDistance{dot(xi - prim.a, prim.b), prim.b}
+                                           : distanceToPrimitive(prim, xi);
       const double ri = radius[i];
       const Vec3 contactPoint = xi - wd.distance * wd.normal;
       b.entry[m] = base + c;
@@ -549,7 +554,8 @@ struct BlockSweep {
     b.uniform = true;
     gatherRun(rb, base, count, 0);
     evaluateBatch<N, R, C>(b, coefficients, dt);
-    const bool wallsGathered = batchWalls && gatherWalls(rb, re);
+    const bool wallsGathered =
+        batchWalls && (walls->allPlanes ? gatherWalls<true>(rb, re) : gatherWalls<false>(rb, re));
     if (wallsGathered) evaluateWallBatch<N, R, C>(*wallBatch, coefficients, dt);
     initialiseUpTo(std::min<std::size_t>(end, std::max<std::size_t>(re, std::size_t{maxPartner} + 1)));
     for (std::size_t r = 0; r < re - rb; ++r) b.rowForce[r] = b.rowTorque[r] = Vec3{};
