@@ -267,6 +267,11 @@ struct BlockSweep {
       __builtin_prefetch(angularVelocity + j);
       __builtin_prefetch(mass + j);
       __builtin_prefetch(type + j);
+      // force and torque: written by the scatter (initialised long before for a far partner,
+      // when the initialisation front passed it). Partners of other blocks go to the buffers.
+      const std::size_t own = std::min<std::size_t>(j, end - 1);
+      __builtin_prefetch(force + own, 1);
+      __builtin_prefetch(torque + own, 1);
     }
   }
 
