@@ -291,11 +291,12 @@ struct BlockSweep {
     const double* const mi = mass + rb;
     const std::uint32_t* const partnerOf = partner + base;
     Vec3* const h = history + base;
+    const PeriodicBox localBox = box;  // a local copy: the batch stores cannot change it (no reloads)
     std::uint32_t m = start;
     for (std::uint32_t c = 0; c < count; ++c) {
       const std::uint32_t row = b.owner[c];
       const std::uint32_t j = partnerOf[c];
-      const Vec3 d = box.minimumImage(x[row] - position[j]);
+      const Vec3 d = localBox.minimumImage(x[row] - position[j]);
       const double rj = r[j];
       const double dist2 = normSquared(d);
       const double rsum = ri[row] + rj;
