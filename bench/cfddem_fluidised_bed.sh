@@ -11,7 +11,8 @@ duration=${2:-1.0}
 spinup=${3:-0.35}
 exe=${GRAINFLOW:-$here/build/grainflow}
 work=${BENCH_DIR:-/tmp/grainflow_bench_fluidised_bed}
-export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-PASSIVE}
+# OpenMP wait policy: the default (threads spin briefly between parallel regions) on an idle machine;
+# set OMP_WAIT_POLICY=passive yourself on a machine busy with other work.
 case_file=$here/cases/cfddem_bubbling_fluidised_bed.yaml
 spin_dir=$work/spinup_${spinup}
 if [ ! -f "$spin_dir/checkpoint.bin" ] || [ "$spin_dir/checkpoint.bin" -ot "$exe" ]; then
