@@ -163,13 +163,14 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
     const Vec3 xi = p.position[i];
     const double ri = p.radius[i] + skin;
     const auto self = static_cast<std::uint32_t>(i);
+    // Branch-free test (half the candidates have j <= i, at random: a branch on it mispredicts).
     for (int q = 0; q < ranges; ++q)
       for (std::uint32_t s = range[q][0]; s < range[q][1]; ++s) {
         const std::uint32_t j = sorted[s];
-        if (j <= self) continue;
         const Vec3 dx = box.minimumImage(xi - spheres[s].x);
         const double cut = ri + spheres[s].r;
-        if (normSquared(dx) < cut * cut) row[kept++] = j;
+        row[kept] = j;
+        kept += (j > self) & (normSquared(dx) < cut * cut) ? 1u : 0u;
       }
     out.resize(before + kept);
   };

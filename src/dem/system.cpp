@@ -208,10 +208,13 @@ void System::updateInverseInertia() {
 
 void System::computeForces(double dt, double halfKick) {
   ScopedPhase timer(timers_, Phase::Contacts);
-  bool hasTriangles = false;
-  for (const WallPrimitive& w : primitives_) hasTriangles |= w.kind == PrimitiveKind::Triangle;
+  bool hasTriangles = false, allPlanes = true;
+  for (const WallPrimitive& w : primitives_) {
+    hasTriangles |= w.kind == PrimitiveKind::Triangle;
+    allPlanes &= w.kind == PrimitiveKind::Plane;
+  }
   const WallState walls{&primitives_, &wallMaterial_, &wallVelocity_, &wallAngularVelocity_, &wallCentre_,
-                        hasTriangles};
+                        hasTriangles, allPlanes};
   dispatchLaws(table_.normalLaw(), table_.rollingLaw(), table_.cohesionLaw(),
                [&]<NormalLaw N, RollingLaw R, CohesionLaw C>() {
                  contactForcesAndKick<N, R, C>(particles_, list_, wallList_, walls, table_, box_, gravity_, dt,

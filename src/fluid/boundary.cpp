@@ -218,7 +218,10 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode) {
   }
 }
 
-void fillVelocityStencilGhosts(Field& u, int c, const Boundaries& bc) {
+namespace {
+/// fillVelocityStencilGhosts on the planes kBegin <= k < kEnd (x and y ghosts) and the z sides
+/// flagged by lowZ / highZ; threaded = may start an OpenMP team for large faces.
+void stencilGhosts(Field& u, int c, const Boundaries& bc, int kBegin, int kEnd, bool lowZ, bool highZ, bool threaded) {
   const CartesianGrid& grid = u.grid();
   const auto& pts = u.points();
   double* d = u.data().data();
@@ -226,6 +229,7 @@ void fillVelocityStencilGhosts(Field& u, int c, const Boundaries& bc) {
     const int n = grid.cells[a];
     const bool periodic = bc.periodic(a);
     if (!periodic && c == a) continue;  // boundary faces: kept by the sweeps
+    if (a == 2 && !lowZ && !highZ) continue;
     // The two other axes, lower one innermost (contiguous rows for the y and z faces).
     const int lo = a == 0 ? 1 : 0, hi = a == 2 ? 1 : 2;
     const std::ptrdiff_t st = u.stride(a), sLo = u.stride(lo), sHi = u.stride(hi);
@@ -233,13 +237,15 @@ void fillVelocityStencilGhosts(Field& u, int c, const Boundaries& bc) {
     const int nLo = pts[lo], nHi = pts[hi];
     // Value of the first ghost from the boundary row (at0) and the next one (at1): tangential
     // components (c != a) as in fillVelocityGhosts; periodic axes copy from the other end.
+    // Rows along the highest other axis: z planes kBegin..kEnd-1 for the x and y sides.
+    const int qBegin = a == 2 ? 0 : kBegin, qEnd = a == 2 ? nHi : kEnd;
     auto forRows = [&](auto&& body) {
       auto row = [&](std::int64_t q) {
         const std::size_t base = origin + static_cast<std::size_t>(q) * sHi;
         for (int p = 0; p < nLo; ++p) body(base + static_cast<std::size_t>(p) * sLo);
       };
-      if (serialLoops() || static_cast<std::int64_t>(nLo) * nHi < kSerialElementsBelow / 8) {
-        for (int q = 0; q < nHi; ++q) row(q);
+      if (!threaded || serialLoops() || static_cast<std::int64_t>(nLo) * nHi < kSerialElementsBelow / 8) {
+        for (int q = qBegin; q < qEnd; ++q) row(q);
       } else {
 #pragma omp parallel for schedule(static)
         for (int q = 0; q < nHi; ++q) row(q);
@@ -260,6 +266,7 @@ void fillVelocityStencilGhosts(Field& u, int c, const Boundaries& bc) {
       continue;
     }
     for (int s = 0; s < 2; ++s) {
+      if (a == 2 && !(s == 0 ? lowZ : highZ)) continue;
       const BoundarySide& side = bc.at(a, s);
       // at(k) = d[b + first + k * inward]: k = 0 is the row next to the boundary.
       const std::ptrdiff_t first = s == 0 ? 0 : (n - 1) * st, inward = s == 0 ? st : -st;
@@ -282,6 +289,17 @@ void fillVelocityStencilGhosts(Field& u, int c, const Boundaries& bc) {
       }
     }
   }
+}
+
+}  // namespace
+
+void fillVelocityStencilGhosts(Field& u, int c, const Boundaries& bc) {
+  stencilGhosts(u, c, bc, 0, u.points()[2], true, true, true);
+}
+
+void fillVelocityStencilGhostsSlab(Field& u, int c, const Boundaries& bc, int kBegin, int kEnd, bool lowZ,
+                                   bool highZ) {
+  stencilGhosts(u, c, bc, kBegin, kEnd, lowZ, highZ, false);
 }
 
 void fillCellGhosts(Field& f, const Boundaries& bc, CellGhostKind kind) {

@@ -62,6 +62,13 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode);
 /// for iterations whose sweeps keep the boundary faces (Chebyshev sweeps), followed by a full fill.
 void fillVelocityStencilGhosts(Field& u, int c, const Boundaries& bc);
 
+/// fillVelocityStencilGhosts for one member of a thread team that owns the z planes
+/// kBegin <= k < kEnd: the x and y ghosts of those planes, and the z ghosts of the min / max side
+/// where lowZ / highZ (the member owning the first / last two planes). z must not be periodic.
+/// Runs on the calling thread.
+void fillVelocityStencilGhostsSlab(Field& u, int c, const Boundaries& bc, int kBegin, int kEnd, bool lowZ,
+                                   bool highZ);
+
 /// Kinds of cell-centred ghost fill.
 /// PeriodicOnly: wrap-around ghosts of periodic axes only (fields read at momentum faces only:
 /// their non-periodic ghosts are never used).

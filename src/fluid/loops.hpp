@@ -3,10 +3,12 @@
 // for small ones (2D and coarse multigrid levels), where starting an OpenMP team costs more
 // than the work -- and much more on an oversubscribed machine. Results are deterministic for a
 // given thread count either way.
+#include <array>
 #include <cstdint>
 #include <utility>
 
 #include "core/parallel.hpp"
+#include "fluid/team_tuner.hpp"
 
 namespace gf::fluid {
 
@@ -34,12 +36,57 @@ class SerialFluidScope {
   bool previous_;
 };
 
+/// The z planes [k0, k1) of the cell grid owned by one member of a thread team (fluid steps of
+/// small grids run in one parallel region whose members split the planes; see momentum_team.cpp).
+/// first / last: the member owning plane 0 / the last plane (and the extra face plane of w).
+struct PlaneSlab {
+  int k0 = 0, k1 = 0;
+  bool first = true, last = true;
+  /// Grid lines (j, k), line = j + points[1] k, of a field with these interior points.
+  std::int64_t lineBegin(const std::array<int, 3>& points) const { return static_cast<std::int64_t>(k0) * points[1]; }
+  std::int64_t lineEnd(const std::array<int, 3>& points) const {
+    return static_cast<std::int64_t>(last ? points[2] : k1) * points[1];
+  }
+  int planeEnd(const std::array<int, 3>& points) const { return last ? points[2] : k1; }
+};
+
+/// Runs body(slab) once per member of a team of 1 or maxTeam threads (the tuner's choice), the
+/// members splitting `planes` z planes; the body must give the same result for any split.
+template <class Body>
+inline void runPlaneTeam(TeamTuner& tuner, int maxTeam, int planes, Body&& body) {
+  const int team = tuner.pick(maxTeam);
+  const double started = TeamTuner::now();
+#pragma omp parallel num_threads(team) if (team > 1)
+  {
+    const int t = team > 1 ? omp_get_thread_num() : 0;
+    const int members = team > 1 ? omp_get_num_threads() : 1;  // fewer than asked: still all planes
+    PlaneSlab slab;
+    slab.k0 = planes * t / members;
+    slab.k1 = planes * (t + 1) / members;
+    slab.first = t == 0;
+    slab.last = t == members - 1;
+    body(static_cast<const PlaneSlab&>(slab));
+  }
+  tuner.record(team, TeamTuner::now() - started);
+}
+
 template <class Body>
 inline void parallelFor(std::int64_t n, Body&& body) {
   if (n < kSerialBelow || serialLoops()) {
     for (std::int64_t i = 0; i < n; ++i) body(i);
   } else {
     gf::parallelFor(n, body);
+  }
+}
+
+/// Lines [lineBegin, lineEnd) of a kernel on the calling thread (a member of a thread team that
+/// has split the lines), or, with lineEnd < 0, all n lines through parallelFor.
+template <class Body>
+inline void forLines(std::int64_t n, std::int64_t lineBegin, std::int64_t lineEnd, Body&& body) {
+  if (lineEnd < 0) {
+    parallelFor(n, body);
+  } else {
+    for (std::int64_t line = lineBegin; line < lineEnd; ++line) body(line);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "fluid/convection_varying.hpp"
 #include "fluid/loops.hpp"
 #include "fluid/schemes.hpp"
 #include "fluid/solver.hpp"
@@ -16,56 +17,56 @@ namespace {
 /// N = div(rho eps u u_c) at the faces of component c (finite volume around the face; mass
 /// fluxes interpolated to the control-volume faces, transported value central or van Leer).
 ///
-/// Where eps varies (UNIFORM = false) the explicit rest of the viscous stress of seed 000
-/// eq. 5.6, div(eps mu [(grad u)^T - 2/3 (div u) I]), is subtracted from N as well (it vanishes
-/// for constant eps and a divergence-free field, so the eps = 1 path skips it).
+/// Where eps varies (convectionVaryingKernel, fluid/convection_varying.hpp) the explicit rest of
+/// the viscous stress of seed 000 eq. 5.6, div(eps mu [(grad u)^T - 2/3 (div u) I]), is
+/// subtracted from N as well (it vanishes for constant eps and a divergence-free field, so the
+/// eps = 1 path, convectionKernel, skips it).
 /// div u per cell on the cells -1..n of every axis (one ghost layer: the periodic faces read it).
-void cellDivergence(const Field u[3], Field& out, int dims) {
+/// Lines [lineBegin, lineEnd) on the calling thread (lineEnd < 0: all lines, threaded); line =
+/// (j + 1) + (ny + 2) (k + 1).
+void cellDivergence(const Field u[3], Field& out, int dims, std::int64_t lineBegin, std::int64_t lineEnd) {
   const CartesianGrid& g = out.grid();
   const int ex = g.cells[0] + 2, ey = g.cells[1] + 2, ez = g.cells[2] + 2;
   double* D = out.data().data();
-  parallelFor(static_cast<std::int64_t>(ey) * ez, [&](std::int64_t line) {
+  const double invH[3] = {1.0 / g.spacing[0], 1.0 / g.spacing[1], 1.0 / g.spacing[2]};
+  forLines(static_cast<std::int64_t>(ey) * ez, lineBegin, lineEnd, [&](std::int64_t line) {
     const int j = static_cast<int>(line % ey) - 1, k = static_cast<int>(line / ey) - 1;
     const std::size_t d0 = out.index(-1, j, k);
     for (int i = -1; i < ex - 1; ++i) {
       double dv = 0.0;
       for (int a = 0; a < dims; ++a) {
         const std::size_t fa = u[a].index(i, j, k);
-        dv += (u[a].data()[fa + u[a].stride(a)] - u[a].data()[fa]) / g.spacing[a];
+        dv += (u[a].data()[fa + u[a].stride(a)] - u[a].data()[fa]) * invH[a];
       }
       D[d0 + static_cast<std::size_t>(i + 1)] = dv;
     }
   });
 }
 
-template <bool TVD, bool UNIFORM, int DIMS>
+template <bool TVD, int DIMS>
 void convectionKernel(const Field u[3], const Field& eps, const std::vector<std::uint8_t>& mask, Field& out, int c,
-                      double rho, double mu, const Field& divergenceField) {
+                      double rho, double /*mu*/, const Field& /*divergenceField*/, std::int64_t lineBegin,
+                      std::int64_t lineEnd) {
   constexpr int dims = DIMS;  // compile-time: the direction loops unroll
   const Field& uc = u[c];
   const CartesianGrid& g = uc.grid();
   const auto& pts = uc.points();
   const double* U = uc.data().data();
-  const double* E = eps.data().data();
   double* O = out.data().data();
-  std::ptrdiff_t su[3], se[3];
-  for (int d = 0; d < 3; ++d) {
-    su[d] = uc.stride(d);
-    se[d] = eps.stride(d);
-  }
-  parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
+  std::ptrdiff_t su[3];
+  for (int d = 0; d < 3; ++d) su[d] = uc.stride(d);
+  forLines(static_cast<std::int64_t>(pts[1]) * pts[2], lineBegin, lineEnd, [&](std::int64_t line) {
     const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
-    const std::size_t f0 = uc.index(0, j, k), e0 = eps.index(0, j, k);
+    const std::size_t f0 = uc.index(0, j, k);
     std::size_t d0[3];
     for (int d = 0; d < 3; ++d) d0[d] = u[d].index(0, j, k);
-    // eps = 1: the x-direction flux F q through face i + 1/2 is point i's plus term and point
-    // i + 1's minus term (the same expression): computed once per face into a line buffer,
-    // xFlux[i + 1] for face i + 1/2 (i = -1 .. n-1).
+    // The x-direction flux F q through face i + 1/2 is point i's plus term and point i + 1's
+    // minus term (the same expression): computed once per face into a line buffer, xFlux[i + 1]
+    // for face i + 1/2 (i = -1 .. n-1).
     thread_local std::vector<double> xFluxBuffer;
-    double* xFlux = nullptr;
-    if constexpr (UNIFORM) {
-      xFluxBuffer.resize(static_cast<std::size_t>(pts[0]) + 1);
-      xFlux = xFluxBuffer.data();
+    xFluxBuffer.resize(static_cast<std::size_t>(pts[0]) + 1);
+    double* xFlux = xFluxBuffer.data();
+    {
       const double* V = u[0].data().data();
       const std::ptrdiff_t vc = u[0].stride(c);
       for (int i = -1; i < pts[0]; ++i) {
@@ -86,63 +87,52 @@ void convectionKernel(const Field u[3], const Field& eps, const std::vector<std:
         O[f] = 0.0;
         continue;
       }
-      const std::size_t cc = e0 + i, cm = cc - se[c];
-      double N = 0.0;
-      for (int d = 0; d < dims; ++d) {
-        if constexpr (UNIFORM) {
-          if (d == 0) {
-            N += (xFlux[i + 1] - xFlux[i]) / g.spacing[0];
-            continue;
-          }
-        }
+      double N = (xFlux[i + 1] - xFlux[i]) / g.spacing[0];
+      for (int d = 1; d < dims; ++d) {
         double Fp, Fm;
         if (d == c) {
-          Fp = rho * (UNIFORM ? 1.0 : E[cc]) * 0.5 * (U[f] + U[f + su[c]]);
-          Fm = rho * (UNIFORM ? 1.0 : E[cm]) * 0.5 * (U[f - su[c]] + U[f]);
+          Fp = rho * 1.0 * 0.5 * (U[f] + U[f + su[c]]);
+          Fm = rho * 1.0 * 0.5 * (U[f - su[c]] + U[f]);
         } else {
           const double* V = u[d].data().data();
           const std::ptrdiff_t vc = u[d].stride(c), vd = u[d].stride(d);
           const std::size_t idc = d0[d] + i, idm = idc - vc;
-          const double vp = 0.5 * (V[idc + vd] + V[idm + vd]);
-          const double vm = 0.5 * (V[idc] + V[idm]);
-          double ep = 1.0, em = 1.0;
-          if constexpr (!UNIFORM) {
-            ep = 0.25 * (E[cc] + E[cm] + E[cc + se[d]] + E[cm + se[d]]);
-            em = 0.25 * (E[cc] + E[cm] + E[cc - se[d]] + E[cm - se[d]]);
-          }
-          Fp = rho * ep * vp;
-          Fm = rho * em * vm;
+          Fp = rho * 1.0 * (0.5 * (V[idc + vd] + V[idm + vd]));
+          Fm = rho * 1.0 * (0.5 * (V[idc] + V[idm]));
         }
         const std::ptrdiff_t s = su[d];
         const double qp = faceValue<TVD>(Fp, U[f - s], U[f], U[f + s], U[f + 2 * s]);
         const double qm = faceValue<TVD>(Fm, U[f - 2 * s], U[f - s], U[f], U[f + s]);
         N += (Fp * qp - Fm * qm) / g.spacing[d];
       }
-      if constexpr (!UNIFORM) {
-        // Explicit stress rest for component c:
-        //   d/dx_c(eps du_c/dx_c) - 2/3 d/dx_c(eps div u) + sum_{d != c} d/dx_d(eps du_d/dx_c)
-        // div u of the cells on both sides (cellDivergence: same arithmetic as in place).
-        const double* Dv = divergenceField.data().data();
-        const double hc = g.spacing[c];
-        const double divP = Dv[cc], divM = Dv[cm];
-        const double dP = (U[f + su[c]] - U[f]) / hc, dM = (U[f] - U[f - su[c]]) / hc;
-        double T = (E[cc] * (dP - 2.0 / 3.0 * divP) - E[cm] * (dM - 2.0 / 3.0 * divM)) / hc;
-        for (int d = 0; d < dims; ++d) {
-          if (d == c) continue;
-          const double* V = u[d].data().data();
-          const std::ptrdiff_t vc = u[d].stride(c), vd = u[d].stride(d);
-          const std::size_t idc = d0[d] + i, idm = idc - vc;
-          const double gp = (V[idc + vd] - V[idm + vd]) / hc;
-          const double gm = (V[idc] - V[idm]) / hc;
-          const double ep = 0.25 * (E[cc] + E[cm] + E[cc + se[d]] + E[cm + se[d]]);
-          const double em = 0.25 * (E[cc] + E[cm] + E[cc - se[d]] + E[cm - se[d]]);
-          T += (ep * gp - em * gm) / g.spacing[d];
-        }
-        N -= mu * T;
-      }
       O[f] = N;
     }
   });
+  (void)eps;
+}
+
+/// The eps-varying convection with shared face fluxes (fluid/convection_varying.hpp): lines
+/// [lineBegin, lineEnd) on this thread, or (lineEnd < 0) all lines in one contiguous run per thread.
+template <bool TVD, int DIMS>
+void convectionVaryingKernel(const Field u[3], const Field& eps, const std::vector<std::uint8_t>& mask, Field& out,
+                             int c, double rho, double mu, const Field& divergenceField, std::int64_t lineBegin,
+                             std::int64_t lineEnd) {
+  if (lineEnd >= 0) {
+    VaryingConvection<TVD, DIMS>(u, eps, mask, out, c, rho, mu, divergenceField).run(lineBegin, lineEnd);
+    return;
+  }
+  const auto& pts = u[c].points();
+  const std::int64_t lines = static_cast<std::int64_t>(pts[1]) * pts[2];
+  if (lines < kSerialBelow || serialLoops()) {
+    VaryingConvection<TVD, DIMS>(u, eps, mask, out, c, rho, mu, divergenceField).run(0, lines);
+    return;
+  }
+#pragma omp parallel
+  {
+    const std::int64_t t = omp_get_thread_num(), team = omp_get_num_threads();
+    VaryingConvection<TVD, DIMS>(u, eps, mask, out, c, rho, mu, divergenceField)
+        .run(lines * t / team, lines * (t + 1) / team);
+  }
 }
 
 /// y = (rho gamma0 eps_f / dt + K_f) x - div(mu eps grad x) at the unknown faces of component c.
@@ -299,21 +289,41 @@ double jacobiSweepUniform(const Field& x, Field& y, const double* B, const Unifo
 
 }  // namespace
 
-void Solver::computeConvection(Field out[3]) {
+void Solver::computeCellDivergence(const PlaneSlab* slab) {
   const int dims = twoD_ ? 2 : 3;
-  if (!uniformCoupling_) {
+  if (!slab) {
     if (cellDivergence_.data().size() != p_.data().size()) cellDivergence_ = Field(grid_);
-    cellDivergence(u_, cellDivergence_, dims);
+    cellDivergence(u_, cellDivergence_, dims, 0, -1);
+    return;
   }
+  // Cells -1..n along y and z: line (j + 1) + (ny + 2)(k + 1); the first and last members also
+  // take the ghost planes k = -1 and k = nz.
+  const std::int64_t ey = grid_.cells[1] + 2;
+  const std::int64_t b = (slab->first ? 0 : slab->k0 + 1) * ey;
+  const std::int64_t e = (slab->last ? grid_.cells[2] + 2 : slab->k1 + 1) * ey;
+  cellDivergence(u_, cellDivergence_, dims, b, e);
+}
+
+void Solver::computeConvection(Field out[3], const PlaneSlab* slab) {
+  const int dims = twoD_ ? 2 : 3;
+  if (!uniformCoupling_ && !slab) computeCellDivergence(nullptr);
   const bool tvd = scheme_ == ConvectionScheme::VanLeer;
   auto run = [&](auto kernel) {
-    for (int c = 0; c < dims; ++c)
-      kernel(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, cellDivergence_);
+    for (int c = 0; c < dims; ++c) {
+      const auto& pts = u_[c].points();
+      kernel(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, cellDivergence_,
+             slab ? slab->lineBegin(pts) : 0, slab ? slab->lineEnd(pts) : -1);
+    }
   };
   auto byDims = [&](auto tvdC, auto uniformC) {
     constexpr bool T = decltype(tvdC)::value, U = decltype(uniformC)::value;
-    if (dims == 3) run(convectionKernel<T, U, 3>);
-    else run(convectionKernel<T, U, 2>);
+    if constexpr (U) {
+      if (dims == 3) run(convectionKernel<T, 3>);
+      else run(convectionKernel<T, 2>);
+    } else {
+      if (dims == 3) run(convectionVaryingKernel<T, 3>);
+      else run(convectionVaryingKernel<T, 2>);
+    }
   };
   if (tvd && uniformCoupling_) byDims(std::true_type{}, std::true_type{});
   else if (tvd) byDims(std::true_type{}, std::false_type{});
@@ -321,7 +331,8 @@ void Solver::computeConvection(Field out[3]) {
   else byDims(std::false_type{}, std::false_type{});
 }
 
-void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2, double e1, double e2) {
+void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2, double e1, double e2,
+                              std::int64_t lineBegin, std::int64_t lineEnd) {
   const Field& uc = u_[c];
   const auto& pts = uc.points();
   const double* U = uc.data().data();
@@ -346,7 +357,7 @@ void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2,
   if (uniformCoupling_) {
     // eps = eps_old = eps_older = 1 and K = 0 (ghosts included): the general expression below with
     // those values (same arithmetic; the drag term K u_p is an exact zero), without reading them.
-    parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
+    forLines(static_cast<std::int64_t>(pts[1]) * pts[2], lineBegin, lineEnd, [&](std::int64_t line) {
       const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
       const std::size_t f0 = uc.index(0, j, k), e0 = p_.index(0, j, k);
       for (int i = 0; i < pts[0]; ++i) {
@@ -363,7 +374,7 @@ void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2,
     });
     return;
   }
-  parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
+  forLines(static_cast<std::int64_t>(pts[1]) * pts[2], lineBegin, lineEnd, [&](std::int64_t line) {
     const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
     const std::size_t f0 = uc.index(0, j, k), e0 = p_.index(0, j, k);
     for (int i = 0; i < pts[0]; ++i) {

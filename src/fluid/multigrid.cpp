@@ -18,6 +18,8 @@ constexpr int kCoarsestSweeps = 40;
 // Multigrid levels are threaded from this many grid lines (a 32^3 level: 1024 lines, about 30 us
 // per half-sweep, enough to pay for a parallel region; the fluid loops' default is 2048).
 constexpr std::int64_t kLevelSerialBelow = 512;
+// solveTeam: grids below kSerialCellsBelow cells, team members own at least this many fine cells.
+constexpr std::int64_t kTeamCellsPerThread = 1500;
 
 double dotProduct(const std::vector<double>& a, const std::vector<double>& b) {
   return parallelSumElements(static_cast<std::int64_t>(a.size()), [&](std::int64_t i) { return a[i] * b[i]; });
@@ -627,13 +629,25 @@ void MultigridPoisson::apply(const std::vector<double>& x, std::vector<double>& 
 
 PoissonResult MultigridPoisson::solve(std::vector<double>& x, const std::vector<double>& b, double tol,
                                       int maxIterations) {
-  if (callerCell_.empty()) return solveInternal(x, b, tol, maxIterations);
+  auto run = [&](std::vector<double>& xi, const std::vector<double>& bi) {
+    if (!teamApplicable()) return solveInternal(xi, bi, tol, maxIterations);
+    const PoissonLevel& F = levels_[0];
+    const auto cells = static_cast<std::int64_t>(F.cells());
+    const int maxTeam = static_cast<int>(std::min<std::int64_t>(
+        {gf::threadCount(), F.n[2], levels_[1].n[2], std::max<std::int64_t>(1, cells / kTeamCellsPerThread)}));
+    const int team = team_.pick(maxTeam);
+    const double started = TeamTuner::now();
+    const PoissonResult r = solveTeam(xi, bi, tol, maxIterations, team);
+    team_.record(team, TeamTuner::now() - started);
+    return r;
+  };
+  if (callerCell_.empty()) return run(x, b);
   const std::size_t N = callerCell_.size();
   for (std::size_t c = 0; c < N; ++c) {
     xInternal_[c] = x[callerCell_[c]];
     bInternal_[c] = b[callerCell_[c]];
   }
-  const PoissonResult result = solveInternal(xInternal_, bInternal_, tol, maxIterations);
+  const PoissonResult result = run(xInternal_, bInternal_);
   for (std::size_t c = 0; c < N; ++c) x[callerCell_[c]] = xInternal_[c];
   return result;
 }
@@ -680,6 +694,174 @@ PoissonResult MultigridPoisson::solveInternal(std::vector<double>& x, const std:
   }
   result.converged = result.relativeResidual <= tol;
   if (singular_) removeMean(x);
+  return result;
+}
+
+}  // namespace gf::fluid
+
+namespace gf::fluid {
+
+bool MultigridPoisson::teamApplicable() const {
+  return !singular_ && levels_.size() >= 2 && levels_[0].redBlackSafe &&
+         static_cast<std::int64_t>(levels_[0].cells()) < kSerialCellsBelow;
+}
+
+// MGPCG with the arithmetic of solveInternal + vcycle, in one parallel region. Member t owns the
+// fine planes [k0, k1) (grid lines j + ny k) and the coarse planes [K0, K1) of level 1, whose
+// right-hand sides (fused residual + restriction) it computes; levels >= 1 run on member 0.
+// r and z live in the fine level's b and x (no swaps). Red-black half-sweeps update only one
+// colour from the other: the same values for any split. Dot products: per-line sums (teamSums_)
+// added in line order by every member (same decisions everywhere, no extra barrier).
+PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::vector<double>& bv, double tol,
+                                          int maxIterations, int team) {
+  PoissonLevel& L = levels_[0];
+  PoissonLevel& C = levels_[1];
+  const std::array<int, 3> f = factors_[0];
+  const int nx = L.n[0], ny = L.n[1], nz = L.n[2];
+  const int cx = C.n[0], cy = C.n[1], cz = C.n[2];
+  const auto lines = static_cast<std::size_t>(ny) * nz;
+  for (auto& v : teamSums_) v.assign(lines, 0.0);
+  const std::size_t stride = static_cast<std::size_t>(nx) + 8;
+  // Sized for vcycle(1) too (it must not reallocate while the members hold their lines).
+  const auto buffers = static_cast<std::size_t>(std::max(team, gf::threadCount()));
+  if (lineBuffer_.size() < stride * buffers) lineBuffer_.resize(stride * buffers);
+  PoissonResult result;
+  double* x = xv.data();
+  const double* b = bv.data();
+  double* r = L.b.data();  // residual (the fine level's right-hand side)
+  double* z = L.x.data();  // preconditioned residual (the fine level's solution)
+  double* p = p_.data();
+  double* q = q_.data();
+  const double* zeros = zeros_.data();
+#pragma omp parallel num_threads(team) if (team > 1)
+  {
+    const int t = team > 1 ? omp_get_thread_num() : 0;
+    const int members = team > 1 ? omp_get_num_threads() : 1;  // fewer than asked: still all planes
+    const std::int64_t lb = static_cast<std::int64_t>(ny) * (nz * t / members);
+    const std::int64_t le = static_cast<std::int64_t>(ny) * (nz * (t + 1) / members);
+    const int K0 = cz * t / members, K1 = cz * (t + 1) / members;
+    double* lineR = lineBuffer_.data() + stride * static_cast<std::size_t>(t);
+    auto sum = [&](int which) {
+      double s = 0.0;
+      for (double v : teamSums_[which]) s += v;
+      return s;
+    };
+    auto lineDot = [&](const double* a, const double* c, std::int64_t line) {
+      const std::size_t base = static_cast<std::size_t>(nx) * line;
+      return serialSum4(nx, [&](std::int64_t i) { return a[base + i] * c[base + i]; });
+    };
+    auto halfSweep = [&](int colour) {
+      for (std::int64_t line = lb; line < le; ++line)
+        relaxLine(L, static_cast<int>(line % ny), static_cast<int>(line / ny), colour);
+    };
+    // z = one V-cycle applied to r (vcycle(0) with kPreSmooth red-black pairs before, kPostSmooth
+    // black-red pairs after).
+    auto vcycle0 = [&]() {
+      std::fill(z + nx * lb, z + nx * le, 0.0);
+#pragma omp barrier
+      for (int s = 0; s < kPreSmooth; ++s) {
+        halfSweep(0);
+#pragma omp barrier
+        halfSweep(1);
+#pragma omp barrier
+      }
+      for (int K = K0; K < K1; ++K)
+        for (int J = 0; J < cy; ++J) {
+          double* cb = C.b.data() + static_cast<std::size_t>(cx) * (J + static_cast<std::size_t>(cy) * K);
+          std::fill(cb, cb + cx, 0.0);
+          const int dkEnd = std::min(f[2], nz - K * f[2]), djEnd = std::min(f[1], ny - J * f[1]);
+          for (int dk = 0; dk < dkEnd; ++dk)
+            for (int dj = 0; dj < djEnd; ++dj) {
+              const int j = J * f[1] + dj, k = K * f[2] + dk;
+              applyLine(L, z, lineR, j, k, zeros);
+              const double* bl = r + static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * k);
+              if (f[0] == 2) {
+                for (int I = 0; I < cx; ++I) {
+                  cb[I] += bl[2 * I] - lineR[2 * I];
+                  if (2 * I + 1 < nx) cb[I] += bl[2 * I + 1] - lineR[2 * I + 1];
+                }
+              } else {
+                for (int I = 0; I < cx; ++I) cb[I] += bl[I] - lineR[I];
+              }
+            }
+        }
+#pragma omp barrier
+      if (t == 0) vcycle(1);
+#pragma omp barrier
+      for (std::int64_t line = lb; line < le; ++line) {
+        const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
+        const std::size_t cbase = static_cast<std::size_t>(cx) * (j / f[1] + static_cast<std::size_t>(cy) * (k / f[2]));
+        const std::size_t base = static_cast<std::size_t>(nx) * line;
+        for (int i = 0; i < nx; ++i) z[base + i] += C.x[cbase + i / f[0]];
+      }
+      for (int s = 0; s < kPostSmooth; ++s) {
+#pragma omp barrier
+        halfSweep(1);
+#pragma omp barrier
+        halfSweep(0);
+      }
+      // r . z of the own lines (the last half-sweep wrote only own values of z).
+      for (std::int64_t line = lb; line < le; ++line) teamSums_[3][static_cast<std::size_t>(line)] = lineDot(r, z, line);
+#pragma omp barrier
+      return sum(3);
+    };
+    // r = b - A x; ||b||, ||r||.
+    for (std::int64_t line = lb; line < le; ++line) {
+      const std::size_t base = static_cast<std::size_t>(nx) * line;
+      applyLine(L, x, q + base, static_cast<int>(line % ny), static_cast<int>(line / ny), zeros);
+      for (int i = 0; i < nx; ++i) r[base + i] = b[base + i] - q[base + i];
+      teamSums_[0][static_cast<std::size_t>(line)] = lineDot(b, b, line);
+      teamSums_[1][static_cast<std::size_t>(line)] = lineDot(r, r, line);
+    }
+#pragma omp barrier
+    const double bnorm = std::sqrt(sum(0));
+    double rnorm = std::sqrt(sum(1));
+    int iterations = 0;
+    double relative = bnorm > 0.0 ? rnorm / bnorm : 0.0;
+    if (bnorm == 0.0) {
+      std::fill(x + nx * lb, x + nx * le, 0.0);
+    } else if (relative > tol) {
+      double rz = vcycle0();
+      for (std::int64_t line = lb; line < le; ++line)
+        std::copy(z + nx * line, z + nx * (line + 1), p + nx * line);
+      for (int it = 1; it <= maxIterations; ++it) {
+#pragma omp barrier  // p complete
+        for (std::int64_t line = lb; line < le; ++line) {
+          applyLine(L, p, q + nx * line, static_cast<int>(line % ny), static_cast<int>(line / ny), zeros);
+          teamSums_[2][static_cast<std::size_t>(line)] = lineDot(p, q, line);
+        }
+#pragma omp barrier
+        const double pq = sum(2);
+        if (pq <= 0.0) break;
+        const double alpha = rz / pq;
+        for (std::int64_t line = lb; line < le; ++line) {
+          const std::size_t base = static_cast<std::size_t>(nx) * line;
+          for (int i = 0; i < nx; ++i) {
+            x[base + i] += alpha * p[base + i];
+            r[base + i] -= alpha * q[base + i];
+          }
+          teamSums_[1][static_cast<std::size_t>(line)] = lineDot(r, r, line);
+        }
+#pragma omp barrier
+        rnorm = std::sqrt(sum(1));
+        iterations = it;
+        relative = rnorm / bnorm;
+        if (relative <= tol) break;
+        const double rzNew = vcycle0();
+        const double beta = rzNew / rz;
+        rz = rzNew;
+        for (std::int64_t line = lb; line < le; ++line) {
+          const std::size_t base = static_cast<std::size_t>(nx) * line;
+          for (int i = 0; i < nx; ++i) p[base + i] = z[base + i] + beta * p[base + i];
+        }
+      }
+    }
+    if (t == 0) {
+      result.iterations = iterations;
+      result.relativeResidual = relative;
+      result.converged = relative <= tol;
+    }
+  }
   return result;
 }
 

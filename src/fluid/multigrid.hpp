@@ -18,6 +18,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "fluid/team_tuner.hpp"
+
 namespace gf::fluid {
 
 struct PoissonLevel {
@@ -67,6 +69,12 @@ class MultigridPoisson {
  private:
   PoissonResult solveInternal(std::vector<double>& x, const std::vector<double>& b, double relativeTolerance,
                               int maxIterations);
+  /// solveInternal for small non-singular grids in one parallel region (multigrid_team in
+  /// multigrid.cpp): the threads split the planes of the fine level, coarser levels run on one
+  /// thread; the same result for any team size (sums per grid line, in line order).
+  bool teamApplicable() const;
+  PoissonResult solveTeam(std::vector<double>& x, const std::vector<double>& b, double relativeTolerance,
+                          int maxIterations, int team);
   void buildDiagonal(PoissonLevel& L, const std::array<bool, 6>& dirichlet) const;
   void coarsen(const PoissonLevel& fine, PoissonLevel& coarse, const std::array<int, 3>& factor) const;
   void applyLevel(const PoissonLevel& L, const std::vector<double>& x, std::vector<double>& y) const;
@@ -98,6 +106,8 @@ class MultigridPoisson {
   std::vector<std::size_t> callerCell_;
   std::vector<double> xInternal_, bInternal_;
   std::vector<double> zeros_;           // zero coefficient line (missing neighbours), n_x + 1 long
+  std::vector<double> teamSums_[4];     // per-line partial sums of the team solve (b.b, r.r, p.Ap, r.z)
+  TeamTuner team_;                      // one thread or a team for solveTeam (speed only)
   std::vector<double> coarseCholesky_;  // dense Cholesky factor of the coarsest level (empty: GS sweeps)
 };
 

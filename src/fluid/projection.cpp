@@ -15,6 +15,14 @@ namespace {
 inline double avg(const double* a, std::size_t i, std::ptrdiff_t s) { return 0.5 * (a[i] + a[i - s]); }
 }  // namespace
 
+int Solver::teamSize() const {
+  // Members own >= 1500 cells (fewer: a barrier costs more than the member's work).
+  const std::int64_t cells = grid_.interiorCellCount();
+  if (twoD_ || cells >= kSerialCellsBelow) return 1;
+  return static_cast<int>(std::max<std::int64_t>(
+      1, std::min<std::int64_t>({gf::threadCount(), grid_.cells[2], cells / 1500})));
+}
+
 double Solver::divergenceAt(int i, int j, int k, double dt) const {
   const Field& eps = coupling_.voidFraction;
   const double* E = eps.data().data();
@@ -150,66 +158,88 @@ void Solver::project(double dt, double g0) {
     const double epsF = avg(E, cc, se);
     return (modelA ? epsF : 1.0) / (timeCoeff * epsF + avg(K, cc, se));
   };
-  if (!uniformCoupling_ || timeCoeff != poissonKey_) {
-    std::array<std::vector<double>, 3> T;
-    std::array<bool, 6> dirichlet{};
+  // Small grids: the coefficients and the right-hand side in one team region, the correction and
+  // p += phi in another (threads split the z planes; the same values for any split).
+  const int team = teamSize();
+  auto inTeam = [&](TeamTuner& tuner, auto&& body) {
+    if (team <= 1) return body(static_cast<const PlaneSlab*>(nullptr));
+    runPlaneTeam(tuner, team, grid_.cells[2], [&](const PlaneSlab& slab) { body(&slab); });
+  };
+  auto range = [&](const PlaneSlab* slab, const std::array<int, 3>& points) {
+    return slab ? std::pair<std::int64_t, std::int64_t>{slab->lineBegin(points), slab->lineEnd(points)}
+                : std::pair<std::int64_t, std::int64_t>{0, -1};
+  };
+  const bool rebuild = !uniformCoupling_ || timeCoeff != poissonKey_;
+  std::array<std::vector<double>, 3> T;
+  std::array<bool, 6> dirichlet{};
+  if (rebuild)
     for (int a = 0; a < 3; ++a) {
       std::array<int, 3> fn = grid_.cells;
       fn[a] += 1;
       T[a].assign(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2], 0.0);
-      if (a >= dims) continue;
-      const double areaOverH = grid_.cellVolume() / (grid_.spacing[a] * grid_.spacing[a]);
-      for (int s = 0; s < 2; ++s) dirichlet[2 * a + s] = bc_.at(a, s).type == BoundaryType::PressureOutlet;
-      const Field& u = u_[a];
-      const int n = grid_.cells[a];
-      parallelFor(static_cast<std::int64_t>(fn[1]) * fn[2], [&](std::int64_t line) {
-        const int j = static_cast<int>(line % fn[1]), k = static_cast<int>(line / fn[1]);
-        const std::uint8_t* M = unknown_[a].data() + u.index(0, j, k);
-        for (int i = 0; i < fn[0]; ++i) {
-          // coupled(): a momentum unknown, or a boundary face (periodic duplicate, pressure outlet).
-          const int along = a == 0 ? i : (a == 1 ? j : k);
-          if (!M[i] && !((along == 0 || along == n) && coupled(a, i, j, k))) continue;
-          const std::size_t cc = p_.index(i, j, k);
-          const double epsF = avg(E, cc, p_.stride(a));
-          T[a][static_cast<std::size_t>(i) + fn[0] * static_cast<std::size_t>(line)] =
-              epsF * correctionCoeff(a, cc) * areaOverH;
-        }
-      });
+      if (a < dims)
+        for (int s = 0; s < 2; ++s) dirichlet[2 * a + s] = bc_.at(a, s).type == BoundaryType::PressureOutlet;
     }
+  const double V = grid_.cellVolume();
+  inTeam(projectTeam_[0], [&](const PlaneSlab* slab) {
+    if (rebuild)
+      for (int a = 0; a < dims; ++a) {
+        std::array<int, 3> fn = grid_.cells;
+        fn[a] += 1;
+        const double areaOverH = grid_.cellVolume() / (grid_.spacing[a] * grid_.spacing[a]);
+        const Field& u = u_[a];
+        const int n = grid_.cells[a];
+        const auto [lb, le] = range(slab, fn);
+        forLines(static_cast<std::int64_t>(fn[1]) * fn[2], lb, le, [&](std::int64_t line) {
+          const int j = static_cast<int>(line % fn[1]), k = static_cast<int>(line / fn[1]);
+          const std::uint8_t* M = unknown_[a].data() + u.index(0, j, k);
+          for (int i = 0; i < fn[0]; ++i) {
+            // coupled(): a momentum unknown, or a boundary face (periodic duplicate, pressure outlet).
+            const int along = a == 0 ? i : (a == 1 ? j : k);
+            if (!M[i] && !((along == 0 || along == n) && coupled(a, i, j, k))) continue;
+            const std::size_t cc = p_.index(i, j, k);
+            const double epsF = avg(E, cc, p_.stride(a));
+            T[a][static_cast<std::size_t>(i) + fn[0] * static_cast<std::size_t>(line)] =
+                epsF * correctionCoeff(a, cc) * areaOverH;
+          }
+        });
+      }
+    // Right-hand side: -(net eps u* outflow + V d eps/dt) per cell.
+    const auto [lb, le] = range(slab, grid_.cells);
+    forLines(static_cast<std::int64_t>(ny) * nz, lb, le, [&](std::int64_t line) {
+      const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
+      const std::size_t e0 = p_.index(0, j, k);
+      const double* Ud[3];
+      std::ptrdiff_t su[3], se[3];
+      double area[3];
+      for (int a = 0; a < dims; ++a) {
+        Ud[a] = u_[a].data().data() + u_[a].index(0, j, k);
+        su[a] = u_[a].stride(a);
+        se[a] = p_.stride(a);
+        area[a] = V / grid_.spacing[a];
+      }
+      double* rhs = poissonRhs_.data() + static_cast<std::size_t>(nx) * line;
+      double* guess = poissonX_.data() + static_cast<std::size_t>(nx) * line;
+      const std::uint8_t* B = blocked_.data() + e0;
+      for (int i = 0; i < nx; ++i) {
+        if (B[i]) {
+          guess[i] = 0.0;  // otherwise: previous increment as initial guess
+          rhs[i] = 0.0;
+          continue;
+        }
+        const std::size_t cc = e0 + i;
+        double net = V * (E[cc] - Eo[cc]) / dt;
+        for (int a = 0; a < dims; ++a)
+          net += area[a] * (avg(E, cc + se[a], se[a]) * Ud[a][i + su[a]] - avg(E, cc, se[a]) * Ud[a][i]);
+        rhs[i] = -net;
+      }
+    });
+  });
+  if (rebuild) {
     std::array<bool, 3> periodic{bc_.periodic(0), bc_.periodic(1), bc_.periodic(2) && !twoD_};
     poisson_.setup(grid_.cells, periodic, T, dirichlet);
     poissonKey_ = uniformCoupling_ ? timeCoeff : -1.0;
   }
-  // Right-hand side: -(net eps u* outflow + V d eps/dt) per cell.
-  const double V = grid_.cellVolume();
-  parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
-    const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
-    const std::size_t e0 = p_.index(0, j, k);
-    const double* Ud[3];
-    std::ptrdiff_t su[3], se[3];
-    double area[3];
-    for (int a = 0; a < dims; ++a) {
-      Ud[a] = u_[a].data().data() + u_[a].index(0, j, k);
-      su[a] = u_[a].stride(a);
-      se[a] = p_.stride(a);
-      area[a] = V / grid_.spacing[a];
-    }
-    double* rhs = poissonRhs_.data() + static_cast<std::size_t>(nx) * line;
-    double* guess = poissonX_.data() + static_cast<std::size_t>(nx) * line;
-    const std::uint8_t* B = blocked_.data() + e0;
-    for (int i = 0; i < nx; ++i) {
-      if (B[i]) {
-        guess[i] = 0.0;  // otherwise: previous increment as initial guess
-        rhs[i] = 0.0;
-        continue;
-      }
-      const std::size_t cc = e0 + i;
-      double net = V * (E[cc] - Eo[cc]) / dt;
-      for (int a = 0; a < dims; ++a)
-        net += area[a] * (avg(E, cc + se[a], se[a]) * Ud[a][i + su[a]] - avg(E, cc, se[a]) * Ud[a][i]);
-      rhs[i] = -net;
-    }
-  });
   // Pressure outlets: phi_b = p_out - p^n_b with p^n_b the interior pressure extrapolated
   // linearly to the boundary, so that at convergence the pressure meets p_out there.
   auto forOutletCells = [&](auto&& body) {
@@ -251,39 +281,52 @@ void Solver::project(double dt, double g0) {
     phi_.data()[cc - inward] = 2.0 * phiB - phi_.data()[cc];
   });
   const double* Phi = phi_.data().data();
-  for (int a = 0; a < dims; ++a) {
-    Field& u = u_[a];
-    const auto& pts = u.points();
-    const std::ptrdiff_t se = p_.stride(a);
-    const double invH = 1.0 / grid_.spacing[a];
-    const int n = grid_.cells[a];
-    const bool periodic = bc_.periodic(a);
-    // eps = 1, K = 0: the same coefficient everywhere (no division per face).
-    const double uniformCoeff = 1.0 / timeCoeff;
-    parallelFor(static_cast<std::int64_t>(pts[1]) * pts[2], [&](std::int64_t line) {
-      const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
-      const std::size_t f0 = u.index(0, j, k), e0 = p_.index(0, j, k);
-      double* U = u.data().data() + f0;
-      const std::uint8_t* M = unknown_[a].data() + f0;
-      // Faces off the momentum unknowns take part only on a boundary (pressure outlets); the
-      // last face of a periodic axis duplicates face 0.
-      auto correctedFace = [&](int i) {
-        if (M[i]) return true;
-        const int along = a == 0 ? i : (a == 1 ? j : k);
-        if (along != 0 && along != n) return false;
-        if (along == n && periodic) return false;
-        return coupled(a, i, j, k);
-      };
-      for (int i = 0; i < pts[0]; ++i) {
-        if (!correctedFace(i)) continue;
-        const std::size_t cc = e0 + i;
-        const double coeff = uniformCoupling_ ? uniformCoeff : correctionCoeff(a, cc);
-        U[i] -= coeff * (Phi[cc] - Phi[cc - se]) * invH;
-      }
-    });
-    fillVelocityGhosts(u, a, bc_, GhostMode::Full);
-  }
-  parallelForElements(static_cast<std::int64_t>(p_.data().size()), [&](std::int64_t q) { p_.data()[q] += phi_.data()[q]; });
+  // eps = 1, K = 0: the same coefficient everywhere (no division per face).
+  const double uniformCoeff = 1.0 / timeCoeff;
+  inTeam(projectTeam_[1], [&](const PlaneSlab* slab) {
+    for (int a = 0; a < dims; ++a) {
+      Field& u = u_[a];
+      const auto& pts = u.points();
+      const std::ptrdiff_t se = p_.stride(a);
+      const double invH = 1.0 / grid_.spacing[a];
+      const int n = grid_.cells[a];
+      const bool periodic = bc_.periodic(a);
+      const auto [lb, le] = range(slab, pts);
+      forLines(static_cast<std::int64_t>(pts[1]) * pts[2], lb, le, [&](std::int64_t line) {
+        const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
+        const std::size_t f0 = u.index(0, j, k), e0 = p_.index(0, j, k);
+        double* U = u.data().data() + f0;
+        const std::uint8_t* M = unknown_[a].data() + f0;
+        // Faces off the momentum unknowns take part only on a boundary (pressure outlets); the
+        // last face of a periodic axis duplicates face 0.
+        auto correctedFace = [&](int i) {
+          if (M[i]) return true;
+          const int along = a == 0 ? i : (a == 1 ? j : k);
+          if (along != 0 && along != n) return false;
+          if (along == n && periodic) return false;
+          return coupled(a, i, j, k);
+        };
+        for (int i = 0; i < pts[0]; ++i) {
+          if (!correctedFace(i)) continue;
+          const std::size_t cc = e0 + i;
+          const double coeff = uniformCoupling_ ? uniformCoeff : correctionCoeff(a, cc);
+          U[i] -= coeff * (Phi[cc] - Phi[cc - se]) * invH;
+        }
+      });
+    }
+    // p += phi over the whole array (ghosts included): the member's planes (the first and last
+    // members also the ghost planes).
+    double* P = p_.data().data();
+    const int g = grid_.ghosts;
+    const std::size_t b = !slab || slab->first ? 0 : p_.index(-g, -g, slab->k0);
+    const std::size_t e = !slab || slab->last ? p_.data().size() : p_.index(-g, -g, slab->k1);
+    if (!slab) {
+      parallelForElements(static_cast<std::int64_t>(p_.data().size()), [&](std::int64_t q) { P[q] += Phi[q]; });
+    } else {
+      for (std::size_t q = b; q < e; ++q) P[q] += Phi[q];
+    }
+  });
+  for (int a = 0; a < dims; ++a) fillVelocityGhosts(u_[a], a, bc_, GhostMode::Full);
   fillCellGhosts(p_, bc_, CellGhostKind::Pressure);
 }
 

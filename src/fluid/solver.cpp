@@ -298,11 +298,13 @@ void Solver::step(double dt) {
     e1 = 1.0 + w;
     e2 = w;
   }
-  computeConvection(conv_);
   stats_ = StepStatistics{};
-  for (int c = 0; c < (twoD_ ? 2 : 3); ++c) assembleMomentum(c, dt, g0, g1, g2, e1, e2);
-  // Each solve also moves u^n into uOld_ (u^{n-1} of the next step).
-  for (int c = 0; c < 3; ++c) stats_.momentumIterations += solveHelmholtz(c, dt, g0);
+  if (!predictMomentumTeam(dt, g0, g1, g2, e1, e2)) {
+    computeConvection(conv_);
+    for (int c = 0; c < (twoD_ ? 2 : 3); ++c) assembleMomentum(c, dt, g0, g1, g2, e1, e2);
+    // Each solve also moves u^n into uOld_ (u^{n-1} of the next step).
+    for (int c = 0; c < 3; ++c) stats_.momentumIterations += solveHelmholtz(c, dt, g0);
+  }
   balanceOutflow(dt);
   {
     ScopedPhase pt(timers_, Phase::PressureSolve);
@@ -352,6 +354,8 @@ double Solver::stableTimeStep() const {
 }
 
 void Solver::cellVelocity(Field out[3]) const {
+  // Called by the coupling every fluid step: small grids loop serially, as in step().
+  const SerialFluidScope serial(grid_.interiorCellCount() < kSerialCellsBelow);
   for (int c = 0; c < 3; ++c) {
     if (out[c].data().size() != p_.data().size()) out[c] = Field(grid_);
     Field& o = out[c];
@@ -369,6 +373,7 @@ void Solver::cellVelocity(Field out[3]) const {
 }
 
 void Solver::pressureGradient(Field out[3]) const {
+  const SerialFluidScope serial(grid_.interiorCellCount() < kSerialCellsBelow);
   for (int c = 0; c < 3; ++c) {
     if (out[c].data().size() != p_.data().size()) out[c] = Field(grid_);
     Field& o = out[c];

@@ -28,8 +28,11 @@
 #include "core/timers.hpp"
 #include "fluid/boundary.hpp"
 #include "fluid/multigrid.hpp"
+#include "fluid/team_tuner.hpp"
 
 namespace gf::fluid {
+
+struct PlaneSlab;  // fluid/loops.hpp
 
 enum class MomentumModel { A, B };
 enum class ConvectionScheme { Central, VanLeer };
@@ -102,8 +105,18 @@ class Solver {
   void buildUnknownMasks();
   void fillAllGhosts();
   // momentum.cpp
-  void computeConvection(Field out[3]);
-  void assembleMomentum(int c, double dt, double gamma0, double gamma1, double gamma2, double ext1, double ext2);
+  /// slab: only the grid lines of that team member (the cell divergence computed before); null:
+  /// all lines, cell divergence included, threaded loop by loop.
+  void computeConvection(Field out[3], const PlaneSlab* slab = nullptr);
+  void computeCellDivergence(const PlaneSlab* slab);
+  // momentum_team.cpp
+  /// Convection, right-hand sides and Jacobi momentum solves of all components in one parallel
+  /// region (threads split the z planes; few barriers) where eps varies and Jacobi applies;
+  /// false (nothing done) otherwise. Results as computeConvection + assembleMomentum + solveHelmholtz.
+  bool predictMomentumTeam(double dt, double gamma0, double gamma1, double gamma2, double ext1, double ext2);
+  /// Right-hand side of component c on grid lines [lineBegin, lineEnd) (lineEnd < 0: all, threaded).
+  void assembleMomentum(int c, double dt, double gamma0, double gamma1, double gamma2, double ext1, double ext2,
+                        std::int64_t lineBegin = 0, std::int64_t lineEnd = -1);
   /// predictor: start from 2 u^n - u^{n-1} and move u^n to uOld_; else (corrector) start from u.
   int solveHelmholtz(int c, double dt, double gamma0, bool predictor = true);
   void applyHelmholtz(int c, const Field& x, std::vector<double>& y, double dt, double gamma0) const;
@@ -167,6 +180,11 @@ class Solver {
   std::vector<double> krylov_[7];  // r, rhat, p, v, s, t, 1/diag
   Field precY_[3], precZ_[3];
   std::vector<double> linePartial_;  // per-line partial sums (deterministic reductions)
+  TeamTuner momentumTeam_;    // one thread or a team for predictMomentumTeam (speed only)
+  TeamTuner projectTeam_[2];  // project(): coefficients + right-hand side, correction + p update
+  /// Largest useful thread team for the plane-split phases of a small 3D grid (1: loop by loop).
+  int teamSize() const;
+  std::vector<double> teamPartial_[3][3];  // momentum_team.cpp: per component, ||b||^2 and two sweep parities
   MultigridPoisson poisson_;
   double poissonKey_ = -1.0;  // rho gamma0 / dt of the current multigrid setup (-1: rebuild)
   bool uniformCoupling_ = true;

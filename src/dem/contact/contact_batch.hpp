@@ -24,10 +24,15 @@ namespace gf::dem {
 /// Scratch arrays of one batch (per thread; fixed size, so that the compiler sees that the arrays
 /// do not overlap). Inputs are filled by the gather, outputs by evaluateBatch().
 struct ContactBatch {
-  static constexpr std::uint32_t kCapacity = 128;
+  static constexpr std::uint32_t kCapacity = 256;  // candidates (neighbour-list entries) per batch
+  static constexpr std::uint32_t kRowFill = 8;     // owner entries written per row without a loop
 
   std::uint32_t size = 0;  // touching pairs gathered
   bool uniform = true;     // all pairs of the batch use coefficients pairIndex[0]
+  // Rows of the run (index in the run: particle rb + row).
+  alignas(64) std::uint32_t owner[kCapacity + kRowFill];  // row of each candidate
+  alignas(64) std::uint32_t row[kCapacity];               // row of each touching pair
+  Vec3 rowForce[kCapacity], rowTorque[kCapacity];         // sums of each row's pairs
   // Inputs.
   alignas(64) std::uint32_t entry[kCapacity];      // neighbour-list entry k
   alignas(64) std::uint32_t partner[kCapacity];    // particle j

@@ -1,0 +1,275 @@
+// Momentum predictor of a coupled (eps-varying) step in one parallel region: convection, the
+// right-hand sides and the Jacobi sweeps of all three velocity components, the threads splitting
+// the z planes (the long axis of a pseudo-2D bed: a 2 x 30 x 90 grid has 2-point x lines, too
+// short to split). A thread team per loop cost more than the loop on such grids (5400 cells, a
+// few microseconds per loop); here a step has 4 + (sweeps) barriers. Every value is computed
+// with the arithmetic of the loop-by-loop path (computeConvection, assembleMomentum,
+// solveHelmholtz's Jacobi branch): the same velocity for any thread count. Norms are summed per
+// grid line in line order (deterministic; they only decide when to stop).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <omp.h>
+
+#include "fluid/loops.hpp"
+#include "fluid/solver.hpp"
+
+namespace gf::fluid {
+
+namespace {
+
+// Team members own at least this many cells (fewer: the sweeps are shorter than a barrier).
+constexpr std::int64_t kTeamCellsPerThread = 1500;
+
+/// Exact Jacobi diagonal terms of the no-slip closure: solveHelmholtz adds 2 w_d eps_f to the
+/// rows next to walls and inlets of each tangential direction d.
+struct ClosureRows {
+  bool lo[3] = {false, false, false}, hi[3] = {false, false, false};
+  int n[3] = {1, 1, 1};
+};
+
+/// One Jacobi sweep of (rho gamma0 eps_f/dt + K_f) x - div(mu eps grad x) = b on lines [lb, le)
+/// of component c: y = x + D^-1 (b - A x) at the unknown faces, y = x at the other points of the
+/// lines. A x and D in the arithmetic of helmholtzKernel<false, 3> and solveHelmholtz's inverse
+/// diagonal. partial[line] = |b - A x|^2 of the line.
+void jacobiSweepVariable(const Field& x, Field& y, const double* B, const std::vector<std::uint8_t>& mask,
+                         const Field& eps, const Field& K, int c, double mu, double timeCoeff,
+                         const ClosureRows& closure, std::int64_t lb, std::int64_t le, double* partial) {
+  const CartesianGrid& g = x.grid();
+  const auto& pts = x.points();
+  const double* X = x.data().data();
+  double* Y = y.data().data();
+  const double* E = eps.data().data();
+  const double* Kd = K.data().data();
+  std::ptrdiff_t sx[3], se[3];
+  double w[3];
+  for (int d = 0; d < 3; ++d) {
+    sx[d] = x.stride(d);
+    se[d] = eps.stride(d);
+    w[d] = mu / (g.spacing[d] * g.spacing[d]);
+  }
+  for (std::int64_t line = lb; line < le; ++line) {
+    const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
+    const std::size_t f0 = x.index(0, j, k), e0 = eps.index(0, j, k);
+    double acc = 0.0;
+    for (int i = 0; i < pts[0]; ++i) {
+      const std::size_t f = f0 + i;
+      if (!mask[f]) {
+        Y[f] = X[f];
+        continue;
+      }
+      const std::size_t cc = e0 + i, cm = cc - se[c];
+      double diag = timeCoeff * 0.5 * (E[cc] + E[cm]) + 0.5 * (Kd[cc] + Kd[cm]);
+      double off = 0.0;
+      for (int d = 0; d < 3; ++d) {
+        double ep, em;
+        if (d == c) {
+          ep = E[cc];
+          em = E[cm];
+        } else {
+          ep = 0.25 * (E[cc] + E[cm] + E[cc + se[d]] + E[cm + se[d]]);
+          em = 0.25 * (E[cc] + E[cm] + E[cc - se[d]] + E[cm - se[d]]);
+        }
+        diag += w[d] * (ep + em);
+        off += w[d] * (ep * X[f + sx[d]] + em * X[f - sx[d]]);
+      }
+      const double r = B[f] - (diag * X[f] - off);
+      double D = diag;
+      const int idx[3] = {i, j, k};
+      for (int d = 0; d < 3; ++d) {
+        if (d == c) continue;
+        const double epsF = 0.5 * (E[cc] + E[cm]);
+        if (closure.lo[d] && idx[d] == 0) D += 2.0 * w[d] * epsF;
+        if (closure.hi[d] && idx[d] == closure.n[d] - 1) D += 2.0 * w[d] * epsF;
+      }
+      Y[f] = X[f] + r * (1.0 / D);
+      acc += r * r;
+    }
+    partial[line] = acc;
+  }
+}
+
+double sumLines(const std::vector<double>& partial) {
+  double s = 0.0;
+  for (double v : partial) s += v;
+  return s;
+}
+
+}  // namespace
+
+bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, double e1, double e2) {
+  if (uniformCoupling_ || twoD_ || bc_.periodic(2) || grid_.cells[2] < 2) return false;
+  double offRatio = 0.0;
+  for (int d = 0; d < 3; ++d) offRatio += 2.0 * mu_ / (grid_.spacing[d] * grid_.spacing[d]);
+  offRatio /= rho_ * g0 / dt + offRatio;
+  if (!(offRatio < 0.6)) return false;  // BiCGStab (solveHelmholtz)
+  const int nz = grid_.cells[2];
+  // Team size: every member owns >= 2 planes (the z ghosts are filled from the two end planes)
+  // and kTeamCellsPerThread cells.
+  const std::int64_t cells = grid_.interiorCellCount();
+  int team = std::min<std::int64_t>({gf::threadCount(), nz / 2, std::max<std::int64_t>(1, cells / kTeamCellsPerThread)});
+  team = momentumTeam_.pick(std::max(team, 1));
+  const double started = TeamTuner::now();
+  if (cellDivergence_.data().size() != p_.data().size()) cellDivergence_ = Field(grid_);
+  for (int c = 0; c < 3; ++c) {
+    const auto& pts = u_[c].points();
+    const auto lines = static_cast<std::size_t>(pts[1]) * pts[2];
+    for (auto& v : teamPartial_[c]) v.assign(lines, 0.0);
+  }
+  ClosureRows closure;
+  for (int d = 0; d < 3; ++d) {
+    closure.n[d] = grid_.cells[d];
+    for (int side = 0; side < 2; ++side) {
+      const BoundaryType type = bc_.at(d, side).type;
+      (side == 0 ? closure.lo : closure.hi)[d] = type == BoundaryType::Wall || type == BoundaryType::Inlet;
+    }
+  }
+  const double timeCoeff = rho_ * g0 / dt;
+  // Jacobi residual contraction bound: r_{s+1} = (I - A D^-1) r_s, whose entries are the
+  // off-diagonal couplings and the diagonal terms D lacks or adds (slip and wall closures), each
+  // at most (4/3) w_max eps_max, at most 10 of them (in w_max eps_max units) per row and per
+  // column, over D >= rho gamma0 eps_min / dt; ||M||_2 <= sqrt(||M||_1 ||M||_inf). A sweep whose
+  // residual r_s satisfies 2 bound r_s <= tol has produced an iterate with ||r_{s+1}|| <= tol / 2:
+  // it is accepted without the sweep that would only confirm it (the same iterate as before).
+  double contraction = std::numeric_limits<double>::infinity();
+  {
+    const auto& e = coupling_.voidFraction.data();
+    const auto [lo, hi] = std::minmax_element(e.begin(), e.end());
+    double wMax = 0.0;
+    for (int d = 0; d < 3; ++d) wMax = std::max(wMax, mu_ / (grid_.spacing[d] * grid_.spacing[d]));
+    if (*lo > 0.0) contraction = 12.0 * wMax * std::max(1.0, *hi) / (timeCoeff * *lo);
+  }
+  constexpr int kMaxSweeps = 40;  // as solveHelmholtz's Jacobi branch; BiCGStab takes over after
+  int iterations[3] = {0, 0, 0};
+  bool converged[3] = {true, true, true};
+  bool inY[3] = {false, false, false};  // the result lies in precY_[c]
+  const int g = grid_.ghosts;
+#pragma omp parallel num_threads(team) if (team > 1)
+  {
+    const int t = team > 1 ? omp_get_thread_num() : 0;
+    const int members = team > 1 ? omp_get_num_threads() : 1;  // fewer than asked: still all planes
+    PlaneSlab slab;
+    slab.k0 = nz * t / members;
+    slab.k1 = nz * (t + 1) / members;
+    slab.first = t == 0;
+    slab.last = t == members - 1;
+    // Flat range [begin, end) of this member's planes of a field (ghost rows included; the first
+    // and last members also take the ghost planes): element-wise work on whole arrays.
+    auto flatRange = [&](const Field& f) {
+      const std::size_t b = slab.first ? 0 : f.index(-g, -g, slab.k0);
+      const std::size_t e = slab.last ? f.data().size() : f.index(-g, -g, slab.k1);
+      return std::pair<std::size_t, std::size_t>{b, e};
+    };
+    computeCellDivergence(&slab);
+#pragma omp barrier
+    computeConvection(conv_, &slab);
+    for (int c = 0; c < 3; ++c) {
+      const auto& pts = u_[c].points();
+      assembleMomentum(c, dt, g0, g1, g2, e1, e2, slab.lineBegin(pts), slab.lineEnd(pts));
+    }
+#pragma omp barrier  // convection read u^n of the neighbouring planes
+    for (int c = 0; c < 3; ++c) {
+      // Initial guess (solveHelmholtz): 2 u^n - u^{n-1} + last step's extrapolation error;
+      // u^{n-1} <- u^n everywhere (ghosts included).
+      Field& x = u_[c];
+      double* X = x.data().data();
+      double* Uo = uOld_[c].data().data();
+      double* G = guessError_[c].data().data();
+      const std::uint8_t* M = unknown_[c].data();
+      const auto [b, e] = flatRange(x);
+      for (std::size_t q = b; q < e; ++q) {
+        const double un = X[q];
+        if (M[q]) {
+          const double extrapolated = 2.0 * un - Uo[q];
+          X[q] = extrapolated + G[q];
+          G[q] = extrapolated;
+        }
+        Uo[q] = un;
+      }
+      const auto& pts = x.points();
+      fillVelocityStencilGhostsSlab(x, c, bc_, slab.k0, slab.planeEnd(pts), slab.first, slab.last);
+      const double* B = rhs_[c].data().data();
+      double* partial = teamPartial_[c][0].data();
+      for (std::int64_t line = slab.lineBegin(pts); line < slab.lineEnd(pts); ++line) {
+        const std::size_t f0 = x.index(0, static_cast<int>(line % pts[1]), static_cast<int>(line / pts[1]));
+        double s = 0.0;
+        for (int i = 0; i < pts[0]; ++i) s += M[f0 + i] ? B[f0 + i] * B[f0 + i] : 0.0;
+        partial[line] = s;
+      }
+    }
+#pragma omp barrier
+    // Every member takes the same decisions from the same line sums (no further communication).
+    double tol[3];
+    bool active[3];
+    int its[3] = {0, 0, 0};
+    bool inYLocal[3] = {false, false, false};
+    bool conv[3] = {true, true, true};
+    for (int c = 0; c < 3; ++c) {
+      const double bnorm = std::sqrt(sumLines(teamPartial_[c][0]));
+      tol[c] = momentumTolerance_ * (bnorm > 0.0 ? bnorm : 1.0);
+      active[c] = !unknownList_[c].empty();
+    }
+    for (int sweep = 0; active[0] || active[1] || active[2]; ++sweep) {
+      const int parity = 1 + (sweep & 1);  // partial sums alternate: a member may be one sweep ahead
+      for (int c = 0; c < 3; ++c) {
+        if (!active[c]) continue;
+        Field& x = inYLocal[c] ? precY_[c] : u_[c];
+        Field& y = inYLocal[c] ? u_[c] : precY_[c];
+        const auto& pts = x.points();
+        jacobiSweepVariable(x, y, rhs_[c].data().data(), unknown_[c], coupling_.voidFraction,
+                            coupling_.dragCoefficient, c, mu_, timeCoeff, closure, slab.lineBegin(pts),
+                            slab.lineEnd(pts), teamPartial_[c][parity].data());
+        fillVelocityStencilGhostsSlab(y, c, bc_, slab.k0, slab.planeEnd(pts), slab.first, slab.last);
+      }
+#pragma omp barrier
+      for (int c = 0; c < 3; ++c) {
+        if (!active[c]) continue;
+        // Residual of x (before this sweep's update): converged -> keep x, as solveHelmholtz.
+        const double rnorm = std::sqrt(sumLines(teamPartial_[c][parity]));
+        if (rnorm <= tol[c]) {
+          active[c] = false;
+        } else if (its[c] >= kMaxSweeps) {
+          active[c] = false;
+          conv[c] = false;
+        } else {
+          ++its[c];
+          inYLocal[c] = !inYLocal[c];
+          if (2.0 * contraction * rnorm <= tol[c]) active[c] = false;  // the new iterate meets tol
+        }
+      }
+    }
+    // guessError_ <- predicted velocity minus its guess (unconverged components: after BiCGStab).
+    for (int c = 0; c < 3; ++c) {
+      if (!conv[c]) continue;
+      const double* X = (inYLocal[c] ? precY_[c] : u_[c]).data().data();
+      double* G = guessError_[c].data().data();
+      const std::uint8_t* M = unknown_[c].data();
+      const auto [b, e] = flatRange(u_[c]);
+      for (std::size_t q = b; q < e; ++q) G[q] = M[q] ? X[q] - G[q] : 0.0;
+    }
+    if (t == 0)
+      for (int c = 0; c < 3; ++c) {
+        iterations[c] = its[c];
+        converged[c] = conv[c];
+        inY[c] = inYLocal[c];
+      }
+  }
+  momentumTeam_.record(team, TeamTuner::now() - started);
+  for (int c = 0; c < 3; ++c) {
+    if (inY[c]) u_[c].data().swap(precY_[c].data());
+    stats_.momentumIterations += iterations[c];
+    if (converged[c]) continue;
+    // Jacobi stalled: BiCGStab from the current iterate (solveHelmholtz), then the guess error.
+    stats_.momentumIterations += solveHelmholtz(c, dt, g0, false);
+    const double* X = u_[c].data().data();
+    double* G = guessError_[c].data().data();
+    const std::uint8_t* M = unknown_[c].data();
+    for (std::size_t q = 0; q < u_[c].data().size(); ++q) G[q] = M[q] ? X[q] - G[q] : 0.0;
+  }
+  // The velocity ghosts beyond the stencil's are filled by project() (after the correction).
+  return true;
+}
+
+}  // namespace gf::fluid

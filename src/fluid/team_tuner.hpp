@@ -1,0 +1,55 @@
+#pragma once
+// Run-time choice between one thread and a team for a phase of a small fluid grid whose result
+// does not depend on the team size (bit-identical either way, e.g. predictMomentumTeam): on an
+// idle machine a team of 2 halves the phase; on an oversubscribed one (other processes on the
+// cores) every barrier may wait for a descheduled thread and one thread is faster (measured on
+// the shared 2-core machine: 0.6 ms serial, 2.5 ms with a passive team, 46 ms with a spinning
+// one). The tuner times both and keeps the faster, probing the other now and then, less often
+// while the probes confirm the choice. Only the speed depends on it.
+#include <algorithm>
+
+#include <omp.h>
+
+namespace gf::fluid {
+
+class TeamTuner {
+ public:
+  /// Team size for the next call: 1 or `team` (the largest useful size).
+  int pick(int team) {
+    if (team <= 1) return 1;
+    ++calls_;
+    // Warm-up: alternate until both have kWarmup samples.
+    if (samples_[0] < kWarmup || samples_[1] < kWarmup) return (calls_ & 1) ? team : 1;
+    const bool teamFaster = mean_[1] < mean_[0];
+    if (calls_ >= nextProbe_) {
+      probing_ = true;
+      nextProbe_ = calls_ + interval_;
+      return teamFaster ? 1 : team;
+    }
+    return teamFaster ? team : 1;
+  }
+  /// Wall seconds of a call run with `team` threads.
+  void record(int team, double seconds) {
+    const int s = team > 1 ? 1 : 0;
+    // Running mean over the warm-up, then exponential (recent samples count more).
+    const double w = samples_[s] < kWarmup ? 1.0 / (samples_[s] + 1) : 0.25;
+    mean_[s] += w * (seconds - mean_[s]);
+    ++samples_[s];
+    if (probing_) {
+      probing_ = false;
+      const bool confirmed = mean_[s] >= mean_[1 - s];  // the probed one is still the slower
+      interval_ = confirmed ? std::min(2 * interval_, kMaxInterval) : kMinInterval;
+    }
+  }
+  static double now() { return omp_get_wtime(); }
+
+ private:
+  static constexpr int kWarmup = 4;
+  static constexpr long kMinInterval = 64, kMaxInterval = 4096;
+  long calls_ = 0, nextProbe_ = 0, interval_ = kMinInterval;
+  bool probing_ = false;
+  int samples_[2] = {0, 0};
+  double mean_[2] = {0.0, 0.0};
+};
+
+}  // namespace gf::fluid
