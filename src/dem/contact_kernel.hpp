@@ -322,25 +322,17 @@ struct BlockSweep {
       const std::uint32_t j = b.partner[e], row = b.row[e];
       if constexpr (R == RollingLaw::Epsd) {
         const Vec3 rh = rollingHistory[b.entry[e]];
-        b.rhx[e] = rh.x;
-        b.rhy[e] = rh.y;
-        b.rhz[e] = rh.z;
+        storeLane(b.rhx, b.rhy, b.rhz, e, rh);
       }
       const double rj = b.rj[e], rowRadius = ri[row];
       const Vec3 wi = w[row], wj = angularVelocity[j];
       const Vec3 dv = v[row] - velocity[j];
       const Vec3 s = rowRadius * wi + rj * wj;
-      b.dvx[e] = dv.x;
-      b.dvy[e] = dv.y;
-      b.dvz[e] = dv.z;
-      b.sx[e] = s.x;
-      b.sy[e] = s.y;
-      b.sz[e] = s.z;
+      storeLane(b.dvx, b.dvy, b.dvz, e, dv);
+      storeLane(b.sx, b.sy, b.sz, e, s);
       if constexpr (R != RollingLaw::None) {
         const Vec3 dw = wi - wj;
-        b.dwx[e] = dw.x;
-        b.dwy[e] = dw.y;
-        b.dwz[e] = dw.z;
+        storeLane(b.dwx, b.dwy, b.dwz, e, dw);
       }
       b.ri[e] = rowRadius;
       b.mi[e] = mi[row];
@@ -367,8 +359,8 @@ struct BlockSweep {
     const std::uint32_t count = b.size;
     for (std::uint32_t e = 0; e < count; ++e) {
       const std::uint32_t j = b.partner[e], k = b.entry[e], row = b.row[e];
-      const Vec3 fe{b.fx[e], b.fy[e], b.fz[e]};
-      const Vec3 tqj{b.tjx[e], b.tjy[e], b.tjz[e]};
+      const Vec3 fe = loadLane(b.fx, b.fy, b.fz, e);
+      const Vec3 tqj = loadLane(b.tjx, b.tjy, b.tjz, e);
       b.rowForce[row] += fe;
       b.rowTorque[row] += Vec3{b.tix[e], b.tiy[e], b.tiz[e]};
       h[k] = Vec3{b.hx[e], b.hy[e], b.hz[e]};
@@ -470,21 +462,17 @@ struct BlockSweep {
     for (std::uint32_t e = 0; e < m; ++e) {
       const std::size_t i = rb + b.row[e];
       const std::uint32_t w = b.pairIndex[e];
-      const Vec3 n{b.nx[e], b.ny[e], b.nz[e]};
-      const Vec3 contactPoint{b.px[e], b.py[e], b.pz[e]};
+      const Vec3 n = loadLane(b.nx, b.ny, b.nz, e);
+      const Vec3 contactPoint = loadLane(b.px, b.py, b.pz, e);
       const Vec3 ww = wallAngularVelocity[w];
       const Vec3 wallPointVelocity = wallVelocity[w] + cross(ww, contactPoint - wallCentre[w]);
       const Vec3 vi = velocity[i], wi = angularVelocity[i];
       const double ri = radius[i], mi = mass[i];
       const Vec3 relativeVelocity = vi - ri * cross(wi, n) - wallPointVelocity;
-      b.vx[e] = relativeVelocity.x;
-      b.vy[e] = relativeVelocity.y;
-      b.vz[e] = relativeVelocity.z;
+      storeLane(b.vx, b.vy, b.vz, e, relativeVelocity);
       if constexpr (R != RollingLaw::None) {
         const Vec3 dw = wi - ww;
-        b.wx[e] = dw.x;
-        b.wy[e] = dw.y;
-        b.wz[e] = dw.z;
+        storeLane(b.wx, b.wy, b.wz, e, dw);
       }
       b.ri[e] = ri;
       b.mi[e] = mi;
@@ -510,7 +498,7 @@ struct BlockSweep {
     for (std::uint32_t e = 0; e < b.size; ++e) {
       const std::size_t i = rb + b.row[e];
       const std::uint32_t k = b.entry[e];
-      const Vec3 f{b.fx[e], b.fy[e], b.fz[e]};
+      const Vec3 f = loadLane(b.fx, b.fy, b.fz, e);
       force[i] += f;
       torque[i] += Vec3{b.tx[e], b.ty[e], b.tz[e]};
       listForce[k] = f;

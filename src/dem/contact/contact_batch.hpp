@@ -50,6 +50,16 @@ struct ContactBatch {
   alignas(64) double tjx[kCapacity], tjy[kCapacity], tjz[kCapacity];  // torque on j
 };
 
+/// Lane e of three scratch arrays (x, y, z components) as a vector, and back.
+[[gnu::always_inline]] inline Vec3 loadLane(const double* x, const double* y, const double* z, std::uint32_t e) {
+  return {x[e], y[e], z[e]};
+}
+[[gnu::always_inline]] inline void storeLane(double* x, double* y, double* z, std::uint32_t e, const Vec3& v) {
+  x[e] = v.x;
+  y[e] = v.y;
+  z[e] = v.z;
+}
+
 /// Evaluates the contact law for every gathered pair (contactForce, as for one contact).
 template <NormalLaw N, RollingLaw R, CohesionLaw C, bool Uniform>
 GF_VECTOR_CLONES void evaluateBatchAs(ContactBatch& b, const PairCoefficients* coefficients, double dt) {
@@ -72,32 +82,20 @@ GF_VECTOR_CLONES void evaluateBatchAs(ContactBatch& b, const PairCoefficients* c
     g.effectiveMass = mi * mj * rsum * inv;
     if constexpr (R == RollingLaw::Epsd)
       g.rollingInertia = 1.0 / (1.0 / (1.4 * mi * ri * ri) + 1.0 / (1.4 * mj * rj * rj));
-    Vec3 history{b.hx[e], b.hy[e], b.hz[e]};
+    Vec3 history = loadLane(b.hx, b.hy, b.hz, e);
     Vec3 rollingHistory{};
-    if constexpr (R == RollingLaw::Epsd) rollingHistory = {b.rhx[e], b.rhy[e], b.rhz[e]};
+    if constexpr (R == RollingLaw::Epsd) rollingHistory = loadLane(b.rhx, b.rhy, b.rhz, e);
     const PairCoefficients& c = Uniform ? uniformPair : coefficients[b.pairIndex[e]];
     const ContactResult r = contactForce<N, R, C, true>(c, g, history, &rollingHistory, dt);
     // Torque of the tangential force: -R n x F_t on both (contact point -R_i n from i, +R_j n from j).
     const Vec3 nxf = cross(g.normal, r.tangential);
     const Vec3 ti = r.rollingTorque - ri * nxf;
     const Vec3 tj = -rj * nxf - r.rollingTorque;
-    b.fx[e] = r.force.x;
-    b.fy[e] = r.force.y;
-    b.fz[e] = r.force.z;
-    b.tix[e] = ti.x;
-    b.tiy[e] = ti.y;
-    b.tiz[e] = ti.z;
-    b.tjx[e] = tj.x;
-    b.tjy[e] = tj.y;
-    b.tjz[e] = tj.z;
-    b.hx[e] = history.x;
-    b.hy[e] = history.y;
-    b.hz[e] = history.z;
-    if constexpr (R == RollingLaw::Epsd) {
-      b.rhx[e] = rollingHistory.x;
-      b.rhy[e] = rollingHistory.y;
-      b.rhz[e] = rollingHistory.z;
-    }
+    storeLane(b.fx, b.fy, b.fz, e, r.force);
+    storeLane(b.tix, b.tiy, b.tiz, e, ti);
+    storeLane(b.tjx, b.tjy, b.tjz, e, tj);
+    storeLane(b.hx, b.hy, b.hz, e, history);
+    if constexpr (R == RollingLaw::Epsd) storeLane(b.rhx, b.rhy, b.rhz, e, rollingHistory);
   }
 }
 

@@ -45,34 +45,24 @@ GF_VECTOR_CLONES void evaluateWallBatchAs(WallBatch& b, const PairCoefficients* 
   const PairCoefficients uniformPair = coefficients[b.pairIndex[0]];
   for (std::uint32_t e = 0; e < count; ++e) {
     ContactGeometry g;
-    g.normal = {b.nx[e], b.ny[e], b.nz[e]};
+    g.normal = loadLane(b.nx, b.ny, b.nz, e);
     g.overlap = b.overlap[e];
-    g.relativeVelocity = {b.vx[e], b.vy[e], b.vz[e]};
+    g.relativeVelocity = loadLane(b.vx, b.vy, b.vz, e);
     if constexpr (R != RollingLaw::None) g.relativeAngularVelocity = {b.wx[e], b.wy[e], b.wz[e]};
     const double ri = b.ri[e];
     g.effectiveRadius = ri;
     g.effectiveMass = b.mi[e];
     if constexpr (R == RollingLaw::Epsd) g.rollingInertia = b.inertia[e];
-    Vec3 history{b.hx[e], b.hy[e], b.hz[e]};
+    Vec3 history = loadLane(b.hx, b.hy, b.hz, e);
     Vec3 rollingHistory{};
-    if constexpr (R == RollingLaw::Epsd) rollingHistory = {b.rhx[e], b.rhy[e], b.rhz[e]};
+    if constexpr (R == RollingLaw::Epsd) rollingHistory = loadLane(b.rhx, b.rhy, b.rhz, e);
     const PairCoefficients& c = Uniform ? uniformPair : coefficients[b.pairIndex[e]];
     const ContactResult r = contactForce<N, R, C, true>(c, g, history, &rollingHistory, dt);
     const Vec3 t = r.rollingTorque - ri * cross(g.normal, r.tangential);
-    b.fx[e] = r.force.x;
-    b.fy[e] = r.force.y;
-    b.fz[e] = r.force.z;
-    b.tx[e] = t.x;
-    b.ty[e] = t.y;
-    b.tz[e] = t.z;
-    b.hx[e] = history.x;
-    b.hy[e] = history.y;
-    b.hz[e] = history.z;
-    if constexpr (R == RollingLaw::Epsd) {
-      b.rhx[e] = rollingHistory.x;
-      b.rhy[e] = rollingHistory.y;
-      b.rhz[e] = rollingHistory.z;
-    }
+    storeLane(b.fx, b.fy, b.fz, e, r.force);
+    storeLane(b.tx, b.ty, b.tz, e, t);
+    storeLane(b.hx, b.hy, b.hz, e, history);
+    if constexpr (R == RollingLaw::Epsd) storeLane(b.rhx, b.rhy, b.rhz, e, rollingHistory);
   }
 }
 
