@@ -131,6 +131,27 @@ inline void sampleInterleaved(const SampleWeights& w, const double* buffer, int 
     for (int ch = 0; ch < Channels; ++ch) out[ch] = sum[ch];
 }
 
+/// The trilinear sum over the 8 cells of a located point: the lower cell's channels at base, the
+/// upper cells at the flat offsets step[a] (in cells), weights from the fractions frac[a], in the
+/// order of trilinearWeights (bit-identical to sampleInterleaved over its weights).
+template <int Channels>
+inline void sumTrilinearCorners(const double* base, const std::ptrdiff_t* step, const double* frac, int channels,
+                                double* out) {
+  double sum[Channels > 0 ? Channels : 1];
+  double* acc = Channels > 0 ? sum : out;
+  for (int ch = 0; ch < channels; ++ch) acc[ch] = 0.0;
+  for (int dk = 0; dk < 2; ++dk)
+    for (int dj = 0; dj < 2; ++dj)
+      for (int di = 0; di < 2; ++di) {
+        const double wm =
+            (di ? frac[0] : 1.0 - frac[0]) * (dj ? frac[1] : 1.0 - frac[1]) * (dk ? frac[2] : 1.0 - frac[2]);
+        const double* v = base + (di * step[0] + dj * step[1] + dk * step[2]) * channels;
+        for (int ch = 0; ch < channels; ++ch) acc[ch] += wm * v[ch];
+      }
+  if constexpr (Channels > 0)
+    for (int ch = 0; ch < Channels; ++ch) out[ch] = sum[ch];
+}
+
 /// Trilinear interpolation of a channel-interleaved cell buffer at x, without building the weight
 /// arrays: the same cells, weights and sums in the same order as trilinearWeights followed by
 /// sampleInterleaved (bit-identical), with the 8 cells as base + axis offsets.
@@ -150,19 +171,7 @@ inline void sampleTrilinear(const GridTopology& t, const Vec3& x, const double* 
     step[a] = (t.mapIndex(q.lower + 1, a) - lo[a]) * stride[a];
   }
   const double* base = buffer + t.flat(lo[0], lo[1], lo[2]) * channels;
-  double sum[Channels > 0 ? Channels : 1];
-  double* acc = Channels > 0 ? sum : out;
-  for (int ch = 0; ch < channels; ++ch) acc[ch] = 0.0;
-  for (int dk = 0; dk < 2; ++dk)
-    for (int dj = 0; dj < 2; ++dj)
-      for (int di = 0; di < 2; ++di) {
-        const double wm =
-            (di ? frac[0] : 1.0 - frac[0]) * (dj ? frac[1] : 1.0 - frac[1]) * (dk ? frac[2] : 1.0 - frac[2]);
-        const double* v = base + (di * step[0] + dj * step[1] + dk * step[2]) * channels;
-        for (int ch = 0; ch < channels; ++ch) acc[ch] += wm * v[ch];
-      }
-  if constexpr (Channels > 0)
-    for (int ch = 0; ch < Channels; ++ch) out[ch] = sum[ch];
+  sumTrilinearCorners<Channels>(base, step, frac, channels, out);
 }
 
 /// sampleTrilinear with what depends only on the grid resolved once per particle loop: the clamp
@@ -226,19 +235,7 @@ class TrilinearSampler {
     const double* base = buffer + l.flat * channels;
     const double* frac = l.frac;
     const std::ptrdiff_t* step = l.step;
-    double sum[Channels > 0 ? Channels : 1];
-    double* acc = Channels > 0 ? sum : out;
-    for (int ch = 0; ch < channels; ++ch) acc[ch] = 0.0;
-    for (int dk = 0; dk < 2; ++dk)
-      for (int dj = 0; dj < 2; ++dj)
-        for (int di = 0; di < 2; ++di) {
-          const double wm =
-              (di ? frac[0] : 1.0 - frac[0]) * (dj ? frac[1] : 1.0 - frac[1]) * (dk ? frac[2] : 1.0 - frac[2]);
-          const double* v = base + (di * step[0] + dj * step[1] + dk * step[2]) * channels;
-          for (int ch = 0; ch < channels; ++ch) acc[ch] += wm * v[ch];
-        }
-    if constexpr (Channels > 0)
-      for (int ch = 0; ch < Channels; ++ch) out[ch] = sum[ch];
+    sumTrilinearCorners<Channels>(base, step, frac, channels, out);
   }
 
   template <int Channels = 0>
