@@ -38,36 +38,10 @@ inline double sumOverIndices(std::int64_t n, Body&& body) {
   return parallelSum(n, body);
 }
 
-/// N sums over [0, n): body(i, sums) adds index i's terms. On one thread (or for small n) one pass
-/// in index order; otherwise each thread sums its static block and the block sums are added in
-/// thread order (bit-identical for a given thread count).
-template <int N, class Body>
-inline std::array<double, N> sumsOverIndices(std::int64_t n, Body&& body) {
-  std::array<double, N> total{};
-  const int threads = n < kMinParallelWork ? 1 : omp_get_max_threads();
-  if (threads == 1) {
-    for (std::int64_t i = 0; i < n; ++i) body(i, total);
-    return total;
-  }
-  std::vector<std::array<double, N>> partial(threads, std::array<double, N>{});
-#pragma omp parallel num_threads(threads)
-  {
-    const int t = omp_get_thread_num(), team = omp_get_num_threads();
-    const std::int64_t chunk = n / team, extra = n % team;
-    const std::int64_t begin = t * chunk + std::min<std::int64_t>(t, extra);
-    const std::int64_t end = begin + chunk + (t < extra ? 1 : 0);
-    std::array<double, N> local{};
-    for (std::int64_t i = begin; i < end; ++i) body(i, local);
-    partial[t] = local;
-  }
-  for (const auto& part : partial)
-    for (int c = 0; c < N; ++c) total[c] += part[c];
-  return total;
-}
-
-/// The same N sums with the thread's whole block handed over at once: body(begin, end, sums) adds
+/// N sums over [0, n), each thread's whole block handed over at once: body(begin, end, sums) adds
 /// the terms of indices [begin, end) in index order (the body may work through its block in
-/// pieces). Same blocks, same order, hence the same bits as sumsOverIndices.
+/// pieces). On one thread (or for small n) one block [0, n); otherwise each thread sums its static
+/// block and the block sums are added in thread order (bit-identical for a given thread count).
 template <int N, class Body>
 inline std::array<double, N> sumsOverRanges(std::int64_t n, Body&& body) {
   std::array<double, N> total{};
@@ -90,6 +64,15 @@ inline std::array<double, N> sumsOverRanges(std::int64_t n, Body&& body) {
   for (const auto& part : partial)
     for (int c = 0; c < N; ++c) total[c] += part[c];
   return total;
+}
+
+/// The same N sums index by index: body(i, sums) adds index i's terms (same blocks, same order,
+/// hence the same bits as sumsOverRanges).
+template <int N, class Body>
+inline std::array<double, N> sumsOverIndices(std::int64_t n, Body&& body) {
+  return sumsOverRanges<N>(n, [&](std::int64_t begin, std::int64_t end, std::array<double, N>& sums) {
+    for (std::int64_t i = begin; i < end; ++i) body(i, sums);
+  });
 }
 
 /// out[i] = sqrt(in[i]) for i in [0, n), two at a time with SSE2 (IEEE square root per lane: the
