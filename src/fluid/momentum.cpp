@@ -9,6 +9,7 @@
 #include "fluid/loops.hpp"
 #include "fluid/schemes.hpp"
 #include "fluid/solver.hpp"
+#include "fluid/staggered_eps.hpp"
 
 namespace gf::fluid {
 
@@ -188,13 +189,9 @@ void helmholtzKernel(const Field& x, std::vector<double>& y, const std::vector<s
       for (int d = 0; d < dims; ++d) {
         double ep = 1.0, em = 1.0;
         if constexpr (!UNIFORM) {
-          if (d == c) {
-            ep = E[cc];
-            em = E[cm];
-          } else {
-            ep = 0.25 * (E[cc] + E[cm] + E[cc + se[d]] + E[cm + se[d]]);
-            em = 0.25 * (E[cc] + E[cm] + E[cc - se[d]] + E[cm - se[d]]);
-          }
+          const FaceVoidFractions face = controlVolumeFaceEps(E, cc, cm, se[d], d == c);
+          ep = face.plus;
+          em = face.minus;
         }
         diag += w[d] * (ep + em);
         off += w[d] * (ep * X[f + sx[d]] + em * X[f - sx[d]]);

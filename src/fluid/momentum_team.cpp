@@ -15,6 +15,7 @@
 
 #include "fluid/loops.hpp"
 #include "fluid/solver.hpp"
+#include "fluid/staggered_eps.hpp"
 
 namespace gf::fluid {
 
@@ -64,14 +65,7 @@ void jacobiSweepVariable(const Field& x, Field& y, const double* B, const std::v
       double diag = timeCoeff * 0.5 * (E[cc] + E[cm]) + 0.5 * (Kd[cc] + Kd[cm]);
       double off = 0.0;
       for (int d = 0; d < 3; ++d) {
-        double ep, em;
-        if (d == c) {
-          ep = E[cc];
-          em = E[cm];
-        } else {
-          ep = 0.25 * (E[cc] + E[cm] + E[cc + se[d]] + E[cm + se[d]]);
-          em = 0.25 * (E[cc] + E[cm] + E[cc - se[d]] + E[cm - se[d]]);
-        }
+        const auto [ep, em] = controlVolumeFaceEps(E, cc, cm, se[d], d == c);
         diag += w[d] * (ep + em);
         off += w[d] * (ep * X[f + sx[d]] + em * X[f - sx[d]]);
       }
