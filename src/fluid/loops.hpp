@@ -48,6 +48,18 @@ struct PlaneSlab {
     return static_cast<std::int64_t>(last ? points[2] : k1) * points[1];
   }
   int planeEnd(const std::array<int, 3>& points) const { return last ? points[2] : k1; }
+  /// The slab of the calling member of a parallel region started with num_threads(team)
+  /// if (team > 1): member t of the team actually delivered gets planes [planes t/m, planes (t+1)/m).
+  static PlaneSlab ofCallingMember(int planes, int team) {
+    const int t = team > 1 ? omp_get_thread_num() : 0;
+    const int members = team > 1 ? omp_get_num_threads() : 1;  // fewer than asked: still all planes
+    PlaneSlab slab;
+    slab.k0 = planes * t / members;
+    slab.k1 = planes * (t + 1) / members;
+    slab.first = t == 0;
+    slab.last = t == members - 1;
+    return slab;
+  }
 };
 
 /// Runs body(slab) once per member of a team of 1 or maxTeam threads (the tuner's choice), the
@@ -58,14 +70,8 @@ inline void runPlaneTeam(TeamTuner& tuner, int maxTeam, int planes, Body&& body)
   const double started = TeamTuner::now();
 #pragma omp parallel num_threads(team) if (team > 1)
   {
-    const int t = team > 1 ? omp_get_thread_num() : 0;
-    const int members = team > 1 ? omp_get_num_threads() : 1;  // fewer than asked: still all planes
-    PlaneSlab slab;
-    slab.k0 = planes * t / members;
-    slab.k1 = planes * (t + 1) / members;
-    slab.first = t == 0;
-    slab.last = t == members - 1;
-    body(static_cast<const PlaneSlab&>(slab));
+    const PlaneSlab slab = PlaneSlab::ofCallingMember(planes, team);
+    body(slab);
   }
   tuner.record(team, TeamTuner::now() - started);
 }

@@ -142,13 +142,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
   const int g = grid_.ghosts;
 #pragma omp parallel num_threads(team) if (team > 1)
   {
-    const int t = team > 1 ? omp_get_thread_num() : 0;
-    const int members = team > 1 ? omp_get_num_threads() : 1;  // fewer than asked: still all planes
-    PlaneSlab slab;
-    slab.k0 = nz * t / members;
-    slab.k1 = nz * (t + 1) / members;
-    slab.first = t == 0;
-    slab.last = t == members - 1;
+    const PlaneSlab slab = PlaneSlab::ofCallingMember(nz, team);
     // Flat range [begin, end) of this member's planes of a field (ghost rows included; the first
     // and last members also take the ghost planes): element-wise work on whole arrays.
     auto flatRange = [&](const Field& f) {
@@ -243,7 +237,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
       const auto [b, e] = flatRange(u_[c]);
       for (std::size_t q = b; q < e; ++q) G[q] = M[q] ? X[q] - G[q] : 0.0;
     }
-    if (t == 0)
+    if (slab.first)
       for (int c = 0; c < 3; ++c) {
         iterations[c] = its[c];
         converged[c] = conv[c];
