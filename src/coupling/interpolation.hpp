@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/grid.hpp"
+#include "coupling/axis_offsets.hpp"
 #include "coupling/grid_topology.hpp"
 #include "coupling/stencil.hpp"
 
@@ -195,9 +196,7 @@ class TrilinearSampler {
       // std::min(std::max(s, low), high) is s itself for the infinite bounds of a periodic axis
       x.low = t.periodic[a] ? -std::numeric_limits<double>::infinity() : 0.0;
       x.high = t.periodic[a] ? std::numeric_limits<double>::infinity() : static_cast<double>(n - 1);
-      x.stride = stride[a];
-      x.axis = a;
-      for (int i = kFirst; i <= n + 2; ++i) x.offset.push_back(t.mapIndex(i, a) * stride[a]);
+      x.cells = AxisOffsetTable<std::ptrdiff_t>(t, a, stride[a]);
     }
   }
 
@@ -220,7 +219,7 @@ class TrilinearSampler {
       const int lower = floorToInt(s);
       l.frac[a] = s - lower;
       std::ptrdiff_t lo, hi;
-      x.pair(*t_, lower, lo, hi);
+      x.cells.pair(*t_, lower, lo, hi);
       flat += lo;
       l.step[a] = hi - lo;
     }
@@ -246,23 +245,9 @@ class TrilinearSampler {
   }
 
  private:
-  static constexpr int kFirst = -2;  // first tabulated cell index
   struct Axis {
     double origin = 0.0, inverseSpacing = 1.0, low = 0.0, high = 0.0;
-    std::ptrdiff_t stride = 1;
-    int axis = 0;
-    std::vector<std::ptrdiff_t> offset;  // mapIndex(i) * stride for i = kFirst, ...
-    /// offsets of mapIndex(lower) and mapIndex(lower + 1); mapIndex itself outside the table
-    void pair(const GridTopology& t, int lower, std::ptrdiff_t& lo, std::ptrdiff_t& hi) const {
-      const auto k = static_cast<std::size_t>(lower - kFirst);
-      if (k < offset.size() - 1) {  // (k wraps to a huge value below the table)
-        lo = offset[k];
-        hi = offset[k + 1];
-      } else {
-        lo = t.mapIndex(lower, axis) * stride;
-        hi = t.mapIndex(lower + 1, axis) * stride;
-      }
-    }
+    AxisOffsetTable<std::ptrdiff_t> cells;  // offsets of the cell indices along the axis
   };
   const GridTopology* t_;
   std::ptrdiff_t shift_ = 0;  // flat(0, 0, 0)

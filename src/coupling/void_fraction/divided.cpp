@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "coupling/axis_offsets.hpp"
 #include "coupling/void_fraction/void_fraction_scheme.hpp"
 #include "coupling/loops.hpp"
 
@@ -134,32 +135,7 @@ inline AxisSplit splitAxis(double x, const double (&ru)[kValues], double origin,
 #endif
 }
 
-/// Flat-index offset of a cell index along one axis (mapIndex times the axis stride), tabulated
-/// for the indices a block can touch; mapIndex itself outside the table.
-class AxisOffsets {
- public:
-  AxisOffsets(const GridTopology& t, int axis, std::size_t stride) : axis_(axis), stride_(stride) {
-    const int n = t.grid.cells[axis];
-    for (int i = kFirst; i <= n + 1; ++i) offset_.push_back(static_cast<std::size_t>(t.mapIndex(i, axis)) * stride);
-  }
-  /// offsets of cells lo and lo + 1
-  void pair(const GridTopology& t, int lo, std::size_t& lower, std::size_t& upper) const {
-    const auto k = static_cast<std::size_t>(lo - kFirst);
-    if (k < offset_.size() - 1) {  // (k wraps to a huge value below the table)
-      lower = offset_[k];
-      upper = offset_[k + 1];
-    } else {
-      lower = static_cast<std::size_t>(t.mapIndex(lo, axis_)) * stride_;
-      upper = static_cast<std::size_t>(t.mapIndex(lo + 1, axis_)) * stride_;
-    }
-  }
-
- private:
-  static constexpr int kFirst = -2;
-  int axis_;
-  std::size_t stride_;
-  std::vector<std::size_t> offset_;
-};
+using AxisOffsets = AxisOffsetTable<std::size_t>;
 
 class DividedVoidFraction final : public VoidFractionScheme {
  public:
