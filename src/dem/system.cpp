@@ -154,7 +154,7 @@ void System::refresh() {
   computeForces(0.0, 0.0);
 }
 
-bool System::needsRebuild(double particleMove) const {
+bool System::needsRebuild(double largestMove, double secondLargestMove) const {
   if (list_.rows() != particles_.size() || positionAtBuild_.size() != particles_.size()) return true;
   double wallMove = 0.0;
   const double elapsed = time_ - timeAtBuild_;
@@ -162,8 +162,10 @@ bool System::needsRebuild(double particleMove) const {
     wallMove = std::max(wallMove, elapsed * (norm(wallMotion_[w].velocity) +
                                              (wallGeometryMoves_[w] ? norm(wallMotion_[w].angularVelocity) * wallReach_[w]
                                                                     : 0.0)));
-  // Pairs: both may approach by the displacement; walls: particle plus wall movement.
-  return 2.0 * particleMove > skin_ || particleMove + wallMove > skin_;
+  // A pair that was not listed was at least r_i + r_j + skin apart; since then it came closer by at
+  // most |dx_i| + |dx_j| <= largest + second largest displacement (of two different particles), so the
+  // list stays complete while that sum is within the skin. Walls: particle plus wall movement.
+  return largestMove + secondLargestMove > skin_ || largestMove + wallMove > skin_;
 }
 
 void System::rebuild(std::vector<std::uint32_t> order, std::size_t listedRows) {
@@ -222,10 +224,30 @@ void System::computeForces(double dt, double halfKick) {
                });
 }
 
+namespace {
+// The two largest values of a set (order-independent, so the OpenMP reduction is deterministic).
+struct LargestTwo {
+  double first = 0.0, second = 0.0;
+  void add(double value) {
+    if (value > first) {
+      second = first;
+      first = value;
+    } else if (value > second) {
+      second = value;
+    }
+  }
+  void merge(const LargestTwo& other) {
+    add(other.first);
+    add(other.second);
+  }
+};
+#pragma omp declare reduction(largestTwo : LargestTwo : omp_out.merge(omp_in)) initializer(omp_priv = LargestTwo{})
+}  // namespace
+
 void System::step(double dt) {
   ParticleSet& p = particles_;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
-  double maxDisplacement2 = 0.0;
+  LargestTwo displacement2;  // squared displacements since the last list build
   {
     // Velocity Verlet (translation and rotation of spheres): half kick with old forces, drift;
     // the largest displacement since the last list build comes with the drift.
@@ -240,19 +262,19 @@ void System::step(double dt) {
     const Vec3* f = p.force.data();
     const Vec3* tq = p.torque.data();
     const Vec3* x0 = positionAtBuild_.data();
-#pragma omp parallel for schedule(static) reduction(max : maxDisplacement2)
+#pragma omp parallel for schedule(static) reduction(largestTwo : displacement2)
     for (std::int64_t i = 0; i < n; ++i) {
       v[i] += (halfDt * inverseMass[i]) * f[i];
       w[i] += (halfDt * inverseMoment[i]) * tq[i];
       x[i] = box_.wrap(x[i] + dt * v[i]);
-      if (tracked) maxDisplacement2 = std::max(maxDisplacement2, normSquared(box_.minimumImage(x[i] - x0[i])));
+      if (tracked) displacement2.add(normSquared(box_.minimumImage(x[i] - x0[i])));
     }
   }
   time_ += dt;
   updateWalls();
   const std::size_t before = p.size();
   const bool inserted = insertAndRemove(dt);
-  if (inserted || needsRebuild(std::sqrt(maxDisplacement2))) {
+  if (inserted || needsRebuild(std::sqrt(displacement2.first), std::sqrt(displacement2.second))) {
     std::vector<std::uint32_t> order(p.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
     rebuild(std::move(order), std::min(before, list_.rows()));

@@ -90,7 +90,7 @@ class System {
   void readWalls(Params& root);
   void updateWalls();
   bool insertAndRemove(double dt);
-  bool needsRebuild(double maxParticleDisplacement) const;
+  bool needsRebuild(double largestMove, double secondLargestMove) const;
   void rebuild(std::vector<std::uint32_t> order, std::size_t listedRows);
   void computeForces(double dt, double halfKick);
   void updateInverseInertia();
