@@ -447,13 +447,10 @@ struct BlockSweep {
     b.uniform = true;
     if (count > WallBatch::kCapacity) return false;
     if (count == 0) return true;
-    for (std::size_t i = rb; i < re; ++i) {
-      const std::uint32_t from = wallRowStart[i] - base, length = wallRowStart[i + 1] - wallRowStart[i];
-      const std::uint32_t row = static_cast<std::uint32_t>(i - rb);
-      for (std::uint32_t q = 0; q < WallBatch::kRowFill; ++q) b.owner[from + q] = row;
-      for (std::uint32_t q = WallBatch::kRowFill; q < length; ++q) b.owner[from + q] = row;
-    }
     WallContactList& list = *wallList;
+    // The particle of each entry comes with the list (most rows have no wall entry: no per-row work).
+    const std::uint32_t* const particleOf = list.particle.data() + base;
+    const std::uint32_t runStart = static_cast<std::uint32_t>(rb);
     const WallPrimitive* const primitives = walls->primitives->data();
     const std::uint32_t* const primitiveOf = list.primitive.data() + base;
     Vec3* const h = list.tangentialHistory.data() + base;
@@ -461,7 +458,7 @@ struct BlockSweep {
     Vec3* const listForce = list.force.data() + base;
     std::uint32_t m = 0;
     for (std::uint32_t c = 0; c < count; ++c) {
-      const std::uint32_t row = b.owner[c];
+      const std::uint32_t row = particleOf[c] - runStart;
       const std::size_t i = rb + row;
       const WallPrimitive& prim = primitives[primitiveOf[c]];
       const Vec3 xi = position[i];
