@@ -82,7 +82,15 @@ class Solver {
   double density() const { return rho_; }
   double viscosity() const { return mu_; }
   MomentumModel model() const { return model_; }
-  const StepStatistics& lastStep() const { return stats_; }
+  /// Statistics of the last step; maxDivergence is evaluated at the first call after the step
+  /// (a full pass over the cells that the coupled run never reads: not done every step).
+  const StepStatistics& lastStep() const {
+    if (divergencePending_) {
+      stats_.maxDivergence = maxDivergence();
+      divergencePending_ = false;
+    }
+    return stats_;
+  }
   /// Mean driving pressure gradient -dp/dx along the driving axis (imposed or found by flow-rate control), Pa/m.
   double drivingPressureGradient() const { return drive_; }
   int drivingAxis() const { return driveAxis_; }
@@ -190,11 +198,15 @@ class Solver {
   bool uniformCoupling_ = true;
   bool epsOlderOnes_ = true;  // epsOlder_ is 1 everywhere (ghosts included)
   std::vector<double> poissonRhs_, poissonX_, firstIncrement_;
+  std::array<std::vector<double>, 3> poissonT_;          // face transmissibilities handed to poisson_
+  std::vector<std::uint8_t> pressureFaces_[3];           // projection.cpp: 1 coefficient face, 2 corrected face
+  std::vector<double> correctionCoeff_[3];               // a / (rho gamma0 eps_f/dt + K_f) per face (this step)
 
   double time_ = 0.0, dtPrev_ = 0.0, lastDt_ = 0.0;
   long long steps_ = 0;
   mutable long long healthCheckedAt_ = -1;  // steps_ at the last complete health scan
-  StepStatistics stats_;
+  mutable StepStatistics stats_;
+  mutable bool divergencePending_ = false;  // stats_.maxDivergence not evaluated yet
   PhaseTimers timers_;
 };
 
