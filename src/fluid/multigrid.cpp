@@ -520,9 +520,28 @@ void MultigridPoisson::symmetricGaussSeidel(PoissonLevel& L) const {
       for (int i = nx - 1; i >= 0; --i) relax(i, j, k);
 }
 
+namespace {
+/// The first red half-sweep of a V-cycle level, whose initial x is 0, on grid lines [lb, le): the
+/// relaxation's arithmetic with all neighbours 0, x = (b + 0) / diag on the cells of colour 0,
+/// 0 on the others, with no neighbour reads (the same values, -0 + 0 included).
+void firstHalfSweepFromZero(PoissonLevel& L, std::int64_t lb, std::int64_t le) {
+  const int nx = L.n[0], ny = L.n[1];
+  for (std::int64_t line = lb; line < le; ++line) {
+    const std::size_t base = static_cast<std::size_t>(nx) * line;
+    double* x = L.x.data() + base;
+    const double* b = L.b.data() + base;
+    const double* inv = L.invDiag.data() + base;
+    const int parity = static_cast<int>(line % ny + line / ny) & 1;  // (j + k) % 2
+    for (int i = 0; i < nx; ++i) x[i] = ((i + parity) & 1) ? 0.0 : (b[i] + 0.0) * inv[i];
+  }
+}
+}  // namespace
+
 void MultigridPoisson::vcycle(int l) {
   PoissonLevel& L = levels_[l];
-  {
+  const bool coarsest = l + 1 == static_cast<int>(levels_.size());
+  const bool redBlack = !coarsest && L.redBlackSafe;
+  if (!redBlack) {
     double* x = L.x.data();
     const auto lines = static_cast<std::int64_t>(L.n[1]) * L.n[2];
     const int nx = L.n[0];
@@ -530,7 +549,6 @@ void MultigridPoisson::vcycle(int l) {
       std::fill(x + nx * line, x + nx * (line + 1), 0.0);  // first touch by the thread that smooths it
     });
   }
-  const bool coarsest = l + 1 == static_cast<int>(levels_.size());
   if (coarsest && !coarseCholesky_.empty()) {
     solveCoarsest(L);
     return;
@@ -541,7 +559,11 @@ void MultigridPoisson::vcycle(int l) {
     for (int s = 0; s < sweeps; ++s) symmetricGaussSeidel(L);
     if (coarsest) return;
   } else {
-    for (int s = 0; s < kPreSmooth; ++s) smoothPair(L, 0);
+    // From x = 0: the first red half-sweep without neighbour reads, then black, then the other pairs.
+    parallelForAbove(static_cast<std::int64_t>(L.n[1]) * L.n[2], kLevelSerialBelow,
+                     [&](std::int64_t line) { firstHalfSweepFromZero(L, line, line + 1); });
+    smoothColour(L, 1);
+    for (int s = 1; s < kPreSmooth; ++s) smoothPair(L, 0);
   }
   PoissonLevel& C = levels_[l + 1];
   const std::array<int, 3> f = factors_[l];
@@ -757,9 +779,13 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
     // z = one V-cycle applied to r (vcycle(0) with kPreSmooth red-black pairs before, kPostSmooth
     // black-red pairs after).
     auto vcycle0 = [&]() {
-      std::fill(z + nx * lb, z + nx * le, 0.0);
+      // z = 0, then the first red half-sweep: only the member's own lines of r are read (nobody
+      // reads z between the previous V-cycle's last barrier and the next one).
+      firstHalfSweepFromZero(L, lb, le);
 #pragma omp barrier
-      for (int s = 0; s < kPreSmooth; ++s) {
+      halfSweep(1);
+#pragma omp barrier
+      for (int s = 1; s < kPreSmooth; ++s) {
         halfSweep(0);
 #pragma omp barrier
         halfSweep(1);

@@ -299,7 +299,6 @@ void Solver::step(double dt) {
     e2 = w;
   }
   stats_ = StepStatistics{};
-  divergencePending_ = false;
   if (!predictMomentumTeam(dt, g0, g1, g2, e1, e2)) {
     computeConvection(conv_);
     for (int c = 0; c < (twoD_ ? 2 : 3); ++c) assembleMomentum(c, dt, g0, g1, g2, e1, e2);
@@ -333,7 +332,6 @@ void Solver::step(double dt) {
   lastDt_ = dt;
   time_ += dt;
   ++steps_;
-  divergencePending_ = true;  // stats_.maxDivergence: evaluated by lastStep()
   if (scalarEnabled_) advanceScalar(dt);
 }
 

@@ -48,7 +48,8 @@ struct StepStatistics {
   int pressureIterations = 0;
   double pressureResidual = 0.0;  // relative
   int momentumIterations = 0;     // summed over components
-  double maxDivergence = 0.0;     // max |div(eps u) + d eps/dt| after projection, 1/s
+  // (max |div(eps u) + d eps/dt| after the projection: Solver::maxDivergence(), on demand -- a
+  // full pass over the cells, not made every step)
   /// correctors > 1: relative momentum residual ||b - A u|| / ||b|| of the velocity and pressure
   /// entering the last corrector (the splitting error the correctors remove); 0 otherwise.
   double momentumResidual = 0.0;
@@ -82,15 +83,7 @@ class Solver {
   double density() const { return rho_; }
   double viscosity() const { return mu_; }
   MomentumModel model() const { return model_; }
-  /// Statistics of the last step; maxDivergence is evaluated at the first call after the step
-  /// (a full pass over the cells that the coupled run never reads: not done every step).
-  const StepStatistics& lastStep() const {
-    if (divergencePending_) {
-      stats_.maxDivergence = maxDivergence();
-      divergencePending_ = false;
-    }
-    return stats_;
-  }
+  const StepStatistics& lastStep() const { return stats_; }
   /// Mean driving pressure gradient -dp/dx along the driving axis (imposed or found by flow-rate control), Pa/m.
   double drivingPressureGradient() const { return drive_; }
   int drivingAxis() const { return driveAxis_; }
@@ -205,8 +198,7 @@ class Solver {
   double time_ = 0.0, dtPrev_ = 0.0, lastDt_ = 0.0;
   long long steps_ = 0;
   mutable long long healthCheckedAt_ = -1;  // steps_ at the last complete health scan
-  mutable StepStatistics stats_;
-  mutable bool divergencePending_ = false;  // stats_.maxDivergence not evaluated yet
+  StepStatistics stats_;
   PhaseTimers timers_;
 };
 
