@@ -53,30 +53,30 @@ void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool,
     callerCell_.clear();
     for (int a = 0; a < 3; ++a) F.T[a].assign(T[a].begin(), T[a].end());
   } else {
-    // Caller index of internal (i0, i1, i2): caller coordinate perm_[q] is i_q.
-    auto callerIndex = [&](const int* i, int faceAxis) {
-      int e[3];
-      for (int q = 0; q < 3; ++q) e[perm_[q]] = i[q];
+    // Caller index of internal (i0, i1, i2): caller coordinate perm_[q] is i_q, so the index is the
+    // sum over q of i_q times the caller's stride of axis perm_[q] (in the array of that face axis).
+    auto callerStrides = [&](int faceAxis) {
       const std::size_t ex = n[0] + (faceAxis == 0), ey = n[1] + (faceAxis == 1);
-      return static_cast<std::size_t>(e[0]) + ex * (static_cast<std::size_t>(e[1]) + ey * static_cast<std::size_t>(e[2]));
+      const std::size_t caller[3] = {1, ex, ex * ey};
+      return std::array<std::size_t, 3>{caller[perm_[0]], caller[perm_[1]], caller[perm_[2]]};
+    };
+    auto gather = [&](const std::array<int, 3>& pts, const std::array<std::size_t, 3>& st, auto&& body) {
+      std::size_t internal = 0;
+      for (int k = 0; k < pts[2]; ++k)
+        for (int j = 0; j < pts[1]; ++j) {
+          const std::size_t base = st[1] * static_cast<std::size_t>(j) + st[2] * static_cast<std::size_t>(k);
+          for (int i = 0; i < pts[0]; ++i) body(internal++, base + st[0] * static_cast<std::size_t>(i));
+        }
     };
     callerCell_.resize(F.cells());
-    for (int k = 0; k < F.n[2]; ++k)
-      for (int j = 0; j < F.n[1]; ++j)
-        for (int i = 0; i < F.n[0]; ++i) {
-          const int idx[3] = {i, j, k};
-          callerCell_[F.faceIndex(-1, i, j, k)] = callerIndex(idx, -1);
-        }
+    gather(F.n, callerStrides(-1), [&](std::size_t c, std::size_t e) { callerCell_[c] = e; });
     for (int q = 0; q < 3; ++q) {
       std::array<int, 3> fn = F.n;
       fn[q] += 1;
       F.T[q].resize(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2]);
-      for (int k = 0; k < fn[2]; ++k)
-        for (int j = 0; j < fn[1]; ++j)
-          for (int i = 0; i < fn[0]; ++i) {
-            const int idx[3] = {i, j, k};
-            F.T[q][F.faceIndex(q, i, j, k)] = T[perm_[q]][callerIndex(idx, perm_[q])];
-          }
+      const double* src = T[perm_[q]].data();
+      double* dst = F.T[q].data();
+      gather(fn, callerStrides(perm_[q]), [&](std::size_t c, std::size_t e) { dst[c] = src[e]; });
     }
   }
   xInternal_.assign(F.cells(), 0.0);
