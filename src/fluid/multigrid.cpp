@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include <omp.h>
 
@@ -271,34 +272,40 @@ void MultigridPoisson::coarsen(const PoissonLevel& fine, PoissonLevel& coarse, c
     std::array<int, 3> fn = coarse.n;
     fn[a] += 1;
     coarse.T[a].assign(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2], 0.0);
+    // Rediscretisation: divide by the coarse centre distance in fine cells, (size of the block
+    // below + size above) / 2, or the adjacent block's size at a non-periodic boundary face (there
+    // the operator doubles T: half a block to the boundary). 2 everywhere for even counts; odd
+    // counts leave a last block of 1 cell. One value per coarse face position along a.
+    const int nc = coarse.n[a], nf = fine.n[a];
+    std::vector<double> distance(static_cast<std::size_t>(nc) + 1, 1.0);
+    if (f[a] == 2)
+      for (int C = 0; C <= nc; ++C) {
+        auto blockSize = [&](int I) { return std::min(2, nf - 2 * I); };
+        const int below = C > 0 ? C - 1 : (fine.periodic[a] ? nc - 1 : -1);
+        const int above = C < nc ? C : (fine.periodic[a] ? 0 : -1);
+        if (below >= 0 && above >= 0) distance[static_cast<std::size_t>(C)] = 0.5 * (blockSize(below) + blockSize(above));
+        else distance[static_cast<std::size_t>(C)] = blockSize(below >= 0 ? below : above);
+      }
+    // Fine face array of axis a: strides per axis.
+    const std::size_t fx = static_cast<std::size_t>(fine.n[0]) + (a == 0), fy = static_cast<std::size_t>(fine.n[1]) + (a == 1);
+    const std::size_t fineStride[3] = {1, fx, fx * fy};
+    const double* T = fine.T[a].data();
     parallelFor(static_cast<std::int64_t>(fn[1]) * fn[2], [&](std::int64_t line) {
       const int J = static_cast<int>(line % fn[1]), K = static_cast<int>(line / fn[1]);
+      double* out = coarse.T[a].data() + static_cast<std::size_t>(fn[0]) * static_cast<std::size_t>(line);
       for (int I = 0; I < fn[0]; ++I) {
-        int C[3] = {I, J, K};
+        const int C[3] = {I, J, K};
+        int F[3];
+        F[a] = std::min(C[a] * f[a], fine.n[a]);  // last face of an odd axis: the boundary face
+        F[b] = C[b] * f[b];
+        F[c] = C[c] * f[c];
+        // Children inside the fine grid (odd axis: one child only), summed in (db, dc) order.
+        const int nb = std::min(f[b], fine.n[b] - F[b]), ncc = std::min(f[c], fine.n[c] - F[c]);
+        const std::size_t base = F[0] * fineStride[0] + F[1] * fineStride[1] + F[2] * fineStride[2];
         double sum = 0.0;
-        for (int db = 0; db < f[b]; ++db)
-          for (int dc = 0; dc < f[c]; ++dc) {
-            int F[3];
-            F[a] = std::min(C[a] * f[a], fine.n[a]);  // last face of an odd axis: the boundary face
-            F[b] = C[b] * f[b] + db;
-            F[c] = C[c] * f[c] + dc;
-            if (F[b] >= fine.n[b] || F[c] >= fine.n[c]) continue;  // odd axis: one child only
-            sum += fine.T[a][fine.faceIndex(a, F[0], F[1], F[2])];
-          }
-        // Rediscretisation: divide by the coarse centre distance in fine cells, (size of the
-        // block below + size above) / 2, or the adjacent block's size at a non-periodic boundary
-        // face (there the operator doubles T: half a block to the boundary). 2 everywhere for
-        // even counts; odd counts leave a last block of 1 cell.
-        double distance = 1.0;
-        if (f[a] == 2) {
-          const int nc = coarse.n[a], nf = fine.n[a];
-          auto blockSize = [&](int I) { return std::min(2, nf - 2 * I); };
-          const int below = C[a] > 0 ? C[a] - 1 : (fine.periodic[a] ? nc - 1 : -1);
-          const int above = C[a] < nc ? C[a] : (fine.periodic[a] ? 0 : -1);
-          if (below >= 0 && above >= 0) distance = 0.5 * (blockSize(below) + blockSize(above));
-          else distance = blockSize(below >= 0 ? below : above);
-        }
-        coarse.T[a][coarse.faceIndex(a, I, J, K)] = sum / distance;
+        for (int db = 0; db < nb; ++db)
+          for (int dc = 0; dc < ncc; ++dc) sum += T[base + db * fineStride[b] + dc * fineStride[c]];
+        out[I] = sum / distance[static_cast<std::size_t>(C[a])];
       }
     });
   }
@@ -365,26 +372,61 @@ struct LineCoefficients {
   double X(int i) const { return CONSTANT ? cx : tx[i]; }
 };
 
-template <bool CONSTANT>
-inline void applyLineImpl(const PoissonLevel& L, const double* xv, double* y, int j, int k, const double* zeros) {
+/// Y neighbours present on a line: bit 0 south, bit 1 north. A missing one has a zero coefficient
+/// line, whose product 0 x adds nothing: the Y < 3 variants skip its two loads and two flops (a
+/// 2-cell y axis, the depth of a pseudo-2D bed, has one y neighbour per cell; a 1-cell one none).
+inline int yNeighbours(const LineStencil& st, const double* zeros) {
+  return (st.tS != zeros ? 1 : 0) | (st.tN != zeros ? 2 : 0);
+}
+
+/// S x_S + N x_N + B x_B + T x_T of cell i (the present y neighbours only, in that order).
+template <int Y, class Coefficients>
+[[gnu::always_inline]] inline double yzTerms(const Coefficients& t, const LineStencil& st, const double* x, int i) {
+  if constexpr (Y == 3) {
+    return t.S(i) * x[i + st.oS] + t.N(i) * x[i + st.oN] + t.B(i) * x[i + st.oB] + t.T(i) * x[i + st.oT];
+  } else if constexpr (Y == 1) {
+    return t.S(i) * x[i + st.oS] + t.B(i) * x[i + st.oB] + t.T(i) * x[i + st.oT];
+  } else if constexpr (Y == 2) {
+    return t.N(i) * x[i + st.oN] + t.B(i) * x[i + st.oB] + t.T(i) * x[i + st.oT];
+  } else {
+    return t.B(i) * x[i + st.oB] + t.T(i) * x[i + st.oT];
+  }
+}
+
+/// Calls fn(std::integral_constant<int, Y>) for the run-time y-neighbour set.
+template <class Fn>
+inline void dispatchY(int y, Fn&& fn) {
+  switch (y) {
+    case 3: fn(std::integral_constant<int, 3>{}); break;
+    case 2: fn(std::integral_constant<int, 2>{}); break;
+    case 1: fn(std::integral_constant<int, 1>{}); break;
+    default: fn(std::integral_constant<int, 0>{}); break;
+  }
+}
+
+template <bool CONSTANT, int Y>
+inline void applyLineImpl(const PoissonLevel& L, const double* xv, double* y, int j, int k, const LineStencil& st,
+                          const double* zeros) {
   const int nx = L.n[0], ny = L.n[1];
   const std::size_t base = static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * k);
   const double* x = xv + base;
   const double* diag = L.diag.data() + base;
-  const LineStencil st = lineStencil(L, j, k, zeros);
   const LineCoefficients<CONSTANT> t(L, st, j, k, zeros);
   const bool perX = L.periodic[0] && nx > 1;
   for (int i = 0; i < nx; ++i) {
-    const double off = t.S(i) * x[i + st.oS] + t.N(i) * x[i + st.oN] + t.B(i) * x[i + st.oB] +
-                       t.T(i) * x[i + st.oT] + (i > 0 ? t.X(i) * x[i - 1] : (perX ? t.X(i) * x[nx - 1] : 0.0)) +
+    const double off = yzTerms<Y>(t, st, x, i) + (i > 0 ? t.X(i) * x[i - 1] : (perX ? t.X(i) * x[nx - 1] : 0.0)) +
                        (i < nx - 1 ? t.X(i + 1) * x[i + 1] : (perX ? t.X(i + 1) * x[0] : 0.0));
     y[i] = diag[i] * x[i] - off;
   }
 }
 
 inline void applyLine(const PoissonLevel& L, const double* xv, double* y, int j, int k, const double* zeros) {
-  if (L.constantT) applyLineImpl<true>(L, xv, y, j, k, zeros);
-  else applyLineImpl<false>(L, xv, y, j, k, zeros);
+  const LineStencil st = lineStencil(L, j, k, zeros);
+  dispatchY(yNeighbours(st, zeros), [&](auto yc) {
+    constexpr int Y = decltype(yc)::value;
+    if (L.constantT) applyLineImpl<true, Y>(L, xv, y, j, k, st, zeros);
+    else applyLineImpl<false, Y>(L, xv, y, j, k, st, zeros);
+  });
 }
 }  // namespace
 
@@ -415,19 +457,16 @@ double MultigridPoisson::applyLevelDot(const PoissonLevel& L, const std::vector<
 }
 
 namespace {
-template <bool CONSTANT>
-void relaxLineImpl(PoissonLevel& L, int j, int k, int colour, const double* zeros) {
+template <bool CONSTANT, int Y>
+void relaxLineImpl(PoissonLevel& L, int j, int k, int colour, const LineStencil& st, const double* zeros) {
   const int nx = L.n[0], ny = L.n[1];
   const std::size_t base = static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * k);
   double* x = L.x.data() + base;
   const double* b = L.b.data() + base;
   const double* inv = L.invDiag.data() + base;
-  const LineStencil st = lineStencil(L, j, k, zeros);
   const LineCoefficients<CONSTANT> t(L, st, j, k, zeros);
   const bool perX = L.periodic[0] && nx > 1;
-  auto yz = [&](int i) {
-    return t.S(i) * x[i + st.oS] + t.N(i) * x[i + st.oN] + t.B(i) * x[i + st.oB] + t.T(i) * x[i + st.oT];
-  };
+  auto yz = [&](int i) { return yzTerms<Y>(t, st, x, i); };
   auto relaxEdge = [&](int i) {
     double s = b[i] + yz(i);
     if (i > 0) s += t.X(i) * x[i - 1];
@@ -448,8 +487,13 @@ void relaxLineImpl(PoissonLevel& L, int j, int k, int colour, const double* zero
 
 // Relaxes the cells with (i+j+k) % 2 == colour on grid line (j, k).
 void MultigridPoisson::relaxLine(PoissonLevel& L, int j, int k, int colour) const {
-  if (L.constantT) relaxLineImpl<true>(L, j, k, colour, zeros_.data());
-  else relaxLineImpl<false>(L, j, k, colour, zeros_.data());
+  const double* zeros = zeros_.data();
+  const LineStencil st = lineStencil(L, j, k, zeros);
+  dispatchY(yNeighbours(st, zeros), [&](auto yc) {
+    constexpr int Y = decltype(yc)::value;
+    if (L.constantT) relaxLineImpl<true, Y>(L, j, k, colour, st, zeros);
+    else relaxLineImpl<false, Y>(L, j, k, colour, st, zeros);
+  });
 }
 
 // One half-sweep of red-black Gauss-Seidel over the cells with (i+j+k) % 2 == colour.
