@@ -565,6 +565,22 @@ void MultigridPoisson::symmetricGaussSeidel(PoissonLevel& L) const {
 }
 
 namespace {
+/// Piecewise-constant prolongation of one grid line: x[i] += coarse[i / factor] (factor 1 or 2;
+/// no integer division per cell).
+inline void prolongLine(double* x, const double* coarse, int nx, int factor) {
+  if (factor == 2) {
+    int i = 0;
+    for (; i + 1 < nx; i += 2) {
+      const double c = coarse[i / 2];
+      x[i] += c;
+      x[i + 1] += c;
+    }
+    if (i < nx) x[i] += coarse[i / 2];
+  } else {
+    for (int i = 0; i < nx; ++i) x[i] += coarse[i];
+  }
+}
+
 /// The first red half-sweep of a V-cycle level, whose initial x is 0, on grid lines [lb, le): the
 /// relaxation's arithmetic with all neighbours 0, x = (b + 0) / diag on the cells of colour 0,
 /// 0 on the others, with no neighbour reads (the same values, -0 + 0 included).
@@ -646,7 +662,7 @@ void MultigridPoisson::vcycle(int l) {
     const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
     const std::size_t cbase = static_cast<std::size_t>(cx) * (j / f[1] + static_cast<std::size_t>(cy) * (k / f[2]));
     const std::size_t base = static_cast<std::size_t>(nx) * line;
-    for (int i = 0; i < nx; ++i) L.x[base + i] += C.x[cbase + i / f[0]];
+    prolongLine(L.x.data() + base, C.x.data() + cbase, nx, f[0]);
   });
   if (!L.redBlackSafe) {
     for (int s = 0; s < kPostSmooth; ++s) symmetricGaussSeidel(L);
@@ -862,7 +878,7 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
         const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
         const std::size_t cbase = static_cast<std::size_t>(cx) * (j / f[1] + static_cast<std::size_t>(cy) * (k / f[2]));
         const std::size_t base = static_cast<std::size_t>(nx) * line;
-        for (int i = 0; i < nx; ++i) z[base + i] += C.x[cbase + i / f[0]];
+        prolongLine(z + base, C.x.data() + cbase, nx, f[0]);
       }
       for (int s = 0; s < kPostSmooth; ++s) {
 #pragma omp barrier
