@@ -70,4 +70,44 @@ void computeViscousStressDivergence(const GridTopology& t, const Field* const (&
   });
 }
 
+// The clones: the build uses -ffp-contract=off, so no clone fuses a multiply and an add (the
+// same results on every CPU; as GF_VECTOR_CLONES in src/dem/contact/contact_batch.hpp).
+#if defined(__x86_64__) && defined(__GNUC__) && defined(__linux__) && !defined(__AVX512F__)
+#define GF_COUPLING_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define GF_COUPLING_VECTOR_CLONES
+#endif
+
+GF_COUPLING_VECTOR_CLONES
+void sampleTrilinearBlock(const TrilinearSampler::Location* where, int count, const double* buffer,
+                          double (*out)[13]) {
+  static_assert(kTrilinearBlockChannels == 10, "channels 0-7 in one vector of 8, 8-9 in one of 2");
+  constexpr int kC = kTrilinearBlockChannels;
+  using Double8 = double __attribute__((vector_size(64)));
+  using Double2 = double __attribute__((vector_size(16)));
+  for (int q = 0; q < count; ++q) {
+    const TrilinearSampler::Location& l = where[q];
+    const double* base = buffer + l.flat * kC;
+    const double* frac = l.frac;
+    Double8 low{};  // channels 0-7
+    Double2 high{};  // channels 8-9
+    // the corners, weights and order of sumTrilinearCorners
+    for (int dk = 0; dk < 2; ++dk)
+      for (int dj = 0; dj < 2; ++dj)
+        for (int di = 0; di < 2; ++di) {
+          const double wm =
+              (di ? frac[0] : 1.0 - frac[0]) * (dj ? frac[1] : 1.0 - frac[1]) * (dk ? frac[2] : 1.0 - frac[2]);
+          const double* v = base + (di * l.step[0] + dj * l.step[1] + dk * l.step[2]) * kC;
+          Double8 v8;
+          Double2 v2;
+          __builtin_memcpy(&v8, v, sizeof v8);
+          __builtin_memcpy(&v2, v + 8, sizeof v2);
+          low += wm * v8;
+          high += wm * v2;
+        }
+    __builtin_memcpy(out[q], &low, sizeof low);
+    __builtin_memcpy(out[q] + 8, &high, sizeof high);
+  }
+}
+
 }  // namespace gf::coupling
