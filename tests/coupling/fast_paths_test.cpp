@@ -12,6 +12,7 @@
 
 #include "coupling/interpolation.hpp"
 #include "coupling/loops.hpp"
+#include "coupling/void_fraction/divided.hpp"
 #include "coupling/void_fraction/void_fraction_scheme.hpp"
 #include "coupling_test_helpers.hpp"
 
@@ -86,10 +87,13 @@ TEST(FastPaths, DividedBlockStencilsAreTheCellsOfThe29SatellitePoints) {
   const std::vector<Vec3> unit = dividedUnitPoints();
   ASSERT_EQ(unit.size(), 29u);
   const auto scheme = makeScheme("divided");
+  for (bool avx512 : {true, false})  // the AVX-512 form (where the CPU has it) and the generic one
   for (const auto& periodic : kPeriodicities) {
+    allowDividedAvx512(avx512);
     const GridTopology t(g, periodic);
     ParticleStencils s;
     scheme->buildStencils(particles, t, s);
+    allowDividedAvx512(true);
     ASSERT_EQ(s.capacity, 8);  // the block path
     for (std::size_t p = 0; p < particles.size(); ++p) {
       std::map<std::size_t, int> points;
@@ -107,6 +111,104 @@ TEST(FastPaths, DividedBlockStencilsAreTheCellsOfThe29SatellitePoints) {
       }
       EXPECT_NEAR(sum, 1.0, 1e-15);
     }
+  }
+}
+
+TEST(FastPaths, DividedBlockPathGivesTheSameStencilsWithAndWithoutAvx512) {
+  // particles smaller than a cell, also outside the box (folds, wraps), radii changing along the
+  // set (the scaled points are rebuilt) and runs of equal radii (reused)
+  const CartesianGrid g = makeGrid({2, 6, 7}, {0.0075, 0.005, 0.005}, {0.0, 0.001, -0.002});
+  dem::ParticleSet particles =
+      randomParticles(3000, 0.0008, 0.0013, {-0.0225, -0.014, -0.017}, {0.0375, 0.046, 0.048}, 13);
+  for (std::size_t p = 0; p < particles.size(); p += 3) particles.radius[p] = 0.00125;
+  const auto scheme = makeScheme("divided");
+  for (const auto& periodic : kPeriodicities) {
+    const GridTopology t(g, periodic);
+    ParticleStencils vector, generic;
+    scheme->buildStencils(particles, t, vector);
+    allowDividedAvx512(false);
+    scheme->buildStencils(particles, t, generic);
+    allowDividedAvx512(true);
+    ASSERT_EQ(vector.count, generic.count);
+    for (std::size_t p = 0; p < particles.size(); ++p)
+      for (int e = 0; e < generic.count[p]; ++e) {
+        const std::size_t q = p * generic.capacity + e;
+        ASSERT_EQ(vector.cell[q], generic.cell[q]) << "particle " << p;
+        ASSERT_EQ(vector.weight[q], generic.weight[q]) << "particle " << p;
+      }
+  }
+}
+
+TEST(FastPaths, TrilinearBlockSamplingIsBitIdenticalToTheSampler) {
+  // sampleTrilinearBlock (vector registers, AVX-512 / AVX2 clones) against TrilinearSampler::sampleAt
+  const CartesianGrid g = makeGrid({3, 4, 5}, {0.01, 0.008, 0.012}, {-0.004, 0.002, 0.001});
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  constexpr int kChannels = kTrilinearBlockChannels;
+  for (const auto& periodic : kPeriodicities) {
+    const GridTopology t(g, periodic);
+    const Field layout(g);
+    std::vector<double> buffer(layout.data().size() * kChannels);
+    for (double& v : buffer) v = u(rng) * std::exp(10.0 * u(rng));
+    const TrilinearSampler sampler(t);
+    constexpr int kBlock = 32;
+    for (int block = 0; block < 60; ++block) {
+      TrilinearSampler::Location where[kBlock];
+      for (auto& l : where) {
+        Vec3 x;
+        for (int a = 0; a < 3; ++a)
+          x[a] = g.origin[a] + (0.5 + 0.5 * u(rng)) * g.cells[a] * g.spacing[a] + u(rng) * g.spacing[a];
+        sampler.locate(x, l);
+      }
+      const int count = 1 + block % kBlock;  // partial blocks too
+      double out[kBlock][13];
+      sampleTrilinearBlock(where, count, buffer.data(), out);
+      for (int q = 0; q < count; ++q) {
+        double expected[kChannels];
+        sampler.sampleAt<kChannels>(where[q], buffer.data(), kChannels, expected);
+        for (int ch = 0; ch < kChannels; ++ch) ASSERT_EQ(out[q][ch], expected[ch]) << "channel " << ch;
+      }
+    }
+  }
+}
+
+TEST(FastPaths, DragOnlyExchangeEqualsTheFullImplicitExchangeBitForBit) {
+  // Model A without virtual mass and lifts exchanges the drag only: the deposit skips the three
+  // zero channels of the explicit force. The same case with a zero virtual-mass force (C_vm = 0)
+  // takes the full 7-channel implicit layout; both must give the same fields and forces, in the
+  // time-loop order (exchange fused into the void-fraction deposit) and in the short order.
+  const CartesianGrid g = makeGrid({6, 7, 8}, {0.01, 0.01, 0.01});
+  const dem::ParticleSet base = randomParticles(6000, 0.001, 0.002, {0, 0, 0}, {0.06, 0.07, 0.08}, 21);
+  FluidFields fluid(g);
+  fluid.setVelocity(g, [](const Vec3& x) { return Vec3{std::sin(60 * x.y), 0.3 * x.x, 1.0 + std::cos(50 * x.x)}; });
+  fluid.setPressureGradient(g, [](const Vec3& x) { return Vec3{0.0, 10 * x.z, -9810.0 + 100 * x.y}; });
+  for (bool fused : {true, false}) {
+    std::vector<Field> results[2];
+    std::vector<Vec3> forces[2];
+    for (int variant = 0; variant < 2; ++variant) {
+      const std::string yaml = std::string("  drag_law: gidaspow\n") +
+                               (variant ? "  forces:\n    virtual_mass: true\n    virtual_mass_coefficient: 0\n" : "");
+      auto c = makeCoupler(yaml, g, {true, false, false});
+      dem::ParticleSet particles = base;
+      CouplingFields fields(g);
+      c->computeVoidFraction(particles, fields);
+      c->computeParticleForces(fluid.view(1.2, 1.8e-5, 2e-5), fields, particles);
+      if (fused) {
+        for (std::size_t p = 0; p < particles.size(); ++p) particles.position[p].z += 0.0007;  // "DEM"
+        c->computeVoidFraction(particles, fields);
+        c->fillFluidSources(particles, fields);
+      } else {
+        c->fillFluidSources(fields);
+      }
+      EXPECT_LT(norm(c->momentumBalanceError()), 1e-13 * c->exchangedForceScale());
+      results[variant] = {fields.forceDensity[0], fields.forceDensity[1], fields.forceDensity[2],
+                          fields.dragCoefficient, fields.particleVelocity[0], fields.particleVelocity[1],
+                          fields.particleVelocity[2], fields.voidFraction};
+      forces[variant] = particles.externalForce;
+    }
+    EXPECT_EQ(forces[0], forces[1]) << "fused " << fused;
+    for (std::size_t f = 0; f < results[0].size(); ++f)
+      EXPECT_EQ(results[0][f].data(), results[1][f].data()) << "field " << f << ", fused " << fused;
   }
 }
 
