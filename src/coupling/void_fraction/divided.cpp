@@ -301,38 +301,57 @@ class DividedVoidFraction final : public VoidFractionScheme {
     const double origin[3] = {t.grid.origin.x, t.grid.origin.y, t.grid.origin.z};
     const double inv[3] = {t.inverseSpacing.x, t.inverseSpacing.y, t.inverseSpacing.z};
     const __m512i lane = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0);
+    __mmask8 upperLanes[3];  // lanes b with bit a set take the upper cell of axis a
+    for (int a = 0; a < 3; ++a) upperLanes[a] = _mm512_test_epi64_mask(lane, _mm512_set1_epi64(1ll << a));
     const __m512d weightPerPoint = _mm512_set1_pd(1.0 / kPoints);
-    for (std::size_t p = begin; p < end; ++p) {
-      if (!points.scaledFor(particles.radius[p])) {
-        points.scale(particles.radius[p]);
-        for (int a = 0; a < 3; ++a) upperPoints[a] = _mm512_loadu_pd(points.value[a] + 1);
+    const __m512i shift = _mm512_set1_epi64(static_cast<long long>(tables.shift));
+    const Vec3* position = particles.position.data();
+    const double* radius = particles.radius.data();
+    std::size_t* cellOut = stencils.cell.data();
+    double* weightOut = stencils.weight.data();
+    int* countOut = stencils.count.data();
+    // batches in two passes (lower cells and splits; then offsets, counts and entries): the long
+    // dependency chain of one particle overlaps with those of the next ones
+    constexpr int kBatch = 16;
+    for (std::size_t b0 = begin; b0 < end; b0 += kBatch) {
+      const int size = static_cast<int>(std::min<std::size_t>(kBatch, end - b0));
+      int lower[kBatch][3], split[kBatch][3];
+      for (int q = 0; q < size; ++q) {
+        const std::size_t p = b0 + q;
+        if (!points.scaledFor(radius[p])) {
+          points.scale(radius[p]);
+          for (int a = 0; a < 3; ++a) upperPoints[a] = _mm512_loadu_pd(points.value[a] + 1);
+        }
+        for (int a = 0; a < 3; ++a) {
+          const double xa = position[p][a];
+          const int lo = floorToInt((xa + points.value[a][0] - origin[a]) * inv[a]);
+          const __m512d scaled = _mm512_mul_pd(
+              _mm512_sub_pd(_mm512_add_pd(_mm512_set1_pd(xa), upperPoints[a]), _mm512_set1_pd(origin[a])),
+              _mm512_set1_pd(inv[a]));
+          const __mmask8 below = _mm512_cmp_pd_mask(scaled, _mm512_set1_pd(lo + 1.0), _CMP_LT_OQ);
+          lower[q][a] = lo;
+          split[q][a] = 1 + _mm_popcnt_u32(static_cast<unsigned>(below));
+        }
       }
-      const Vec3& x = particles.position[p];
-      std::size_t offset[3][2];
-      int split[3];
-      __m512i cells = _mm512_set1_epi64(static_cast<long long>(tables.shift));
-      for (int a = 0; a < 3; ++a) {
-        const double xa = x[a];
-        const int lo = floorToInt((xa + points.value[a][0] - origin[a]) * inv[a]);
-        const __m512d scaled = _mm512_mul_pd(
-            _mm512_sub_pd(_mm512_add_pd(_mm512_set1_pd(xa), upperPoints[a]), _mm512_set1_pd(origin[a])),
-            _mm512_set1_pd(inv[a]));
-        const __mmask8 below = _mm512_cmp_pd_mask(scaled, _mm512_set1_pd(lo + 1.0), _CMP_LT_OQ);
-        split[a] = 1 + _mm_popcnt_u32(static_cast<unsigned>(below));
-        axisOffsets[a].pair(t, lo, offset[a][0], offset[a][1]);
-        // lanes b with bit a set take the upper cell of the axis
-        const __mmask8 upper = _mm512_test_epi64_mask(lane, _mm512_set1_epi64(1ll << a));
-        cells = _mm512_add_epi64(cells, _mm512_mask_blend_epi64(upper, _mm512_set1_epi64(static_cast<long long>(offset[a][0])),
-                                                                _mm512_set1_epi64(static_cast<long long>(offset[a][1]))));
+      for (int q = 0; q < size; ++q) {
+        const std::size_t p = b0 + q;
+        std::size_t offset[3][2];
+        __m512i cells = shift;
+        for (int a = 0; a < 3; ++a) {
+          axisOffsets[a].pair(t, lower[q][a], offset[a][0], offset[a][1]);
+          cells = _mm512_add_epi64(cells, _mm512_mask_blend_epi64(upperLanes[a],
+                                                                  _mm512_set1_epi64(static_cast<long long>(offset[a][0])),
+                                                                  _mm512_set1_epi64(static_cast<long long>(offset[a][1]))));
+        }
+        const std::uint64_t counts = foldCounts(unit.packedCount[split[q][0]][split[q][1]][split[q][2]], offset);
+        const __m128i bytes = _mm_cvtsi64_si128(static_cast<long long>(counts));
+        const __m512i count64 = _mm512_cvtepu8_epi64(bytes);
+        const __mmask8 nonEmpty = _mm512_test_epi64_mask(count64, count64);
+        const __m512d weights = _mm512_mul_pd(_mm512_cvtepi32_pd(_mm256_cvtepu8_epi32(bytes)), weightPerPoint);
+        _mm512_storeu_si512(cellOut + p * kBlockCapacity, _mm512_maskz_compress_epi64(nonEmpty, cells));
+        _mm512_storeu_pd(weightOut + p * kBlockCapacity, _mm512_maskz_compress_pd(nonEmpty, weights));
+        countOut[p] = _mm_popcnt_u32(static_cast<unsigned>(nonEmpty));
       }
-      const std::uint64_t counts = foldCounts(unit.packedCount[split[0]][split[1]][split[2]], offset);
-      const __m256i count32 = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(counts)));
-      const __m512i count64 = _mm512_cvtepu8_epi64(_mm_cvtsi64_si128(static_cast<long long>(counts)));
-      const __mmask8 nonEmpty = _mm512_test_epi64_mask(count64, count64);
-      const __m512d weights = _mm512_mul_pd(_mm512_cvtepi32_pd(count32), weightPerPoint);
-      _mm512_storeu_si512(stencils.cell.data() + p * kBlockCapacity, _mm512_maskz_compress_epi64(nonEmpty, cells));
-      _mm512_storeu_pd(stencils.weight.data() + p * kBlockCapacity, _mm512_maskz_compress_pd(nonEmpty, weights));
-      stencils.count[p] = _mm_popcnt_u32(static_cast<unsigned>(nonEmpty));
     }
   }
 #endif
