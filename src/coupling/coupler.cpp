@@ -327,6 +327,8 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
     }
     squareRoots(slipSquared, slipNorm, count);
     for (int q = 0; q < count; ++q) re[q] = rho * slipNorm[q] * dPrimOf[q] / mu;
+    double correction[kBlock];  // f(Re, eps) of the law
+    if (w.drag) correctionsOf(law, re, eps, correction, count);
     double exchangedSquared[kBlock];
     for (int q = 0; q < count; ++q) {
       const std::size_t p = begin + q;
@@ -334,7 +336,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       const double d = 2.0 * particles.radius[p];
       const double dPrim = d * dPrimFactor;
       const double volume = force::sphereVolume(d);  // parcel volume = k^3 primary volumes
-      const double beta = w.drag ? k3 * particleDragCoefficient(mu, dPrim, law(re[q], eps[q])) : 0.0;
+      const double beta = w.drag ? k3 * particleDragCoefficient(mu, dPrim, correction[q]) : 0.0;
       const Vec3 fDrag = force::drag(beta, slip);
       Vec3 exchangedOther{}, particleOnly{};
       if (cP >= 0)

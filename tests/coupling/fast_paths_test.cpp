@@ -10,6 +10,8 @@
 #include <random>
 #include <vector>
 
+#include "coupling/drag/dispatch.hpp"
+#include "coupling/drag/gidaspow.hpp"
 #include "coupling/interpolation.hpp"
 #include "coupling/loops.hpp"
 #include "coupling/void_fraction/divided.hpp"
@@ -299,5 +301,20 @@ TEST(FastPaths, ViscousStressDivergenceIsTheSevenPointLaplacianBitForBit) {
             }
           }
     }
+  }
+}
+
+TEST(FastPaths, GidaspowBlockEqualsTheLawValueByValue) {
+  // the force pass evaluates the law block-wise (Ergun in vector registers, Wen-Yu where eps >= 0.8)
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int n : {1, 7, 8, 9, 31, 32}) {
+    std::vector<double> re(n), eps(n), block(n);
+    for (int i = 0; i < n; ++i) {
+      re[i] = std::exp(12.0 * u(rng) - 6.0);                                          // 0.0025 .. 400
+      eps[i] = i % 4 == 0 ? 0.8 : i % 4 == 1 ? std::nextafter(0.8, 0.0) : 0.3 + 0.7 * u(rng);  // both branches, the switch
+    }
+    correctionsOf(StaticCorrection<&drag::gidaspow>{}, re.data(), eps.data(), block.data(), n);
+    for (int i = 0; i < n; ++i) ASSERT_EQ(block[i], drag::gidaspow(re[i], eps[i])) << "re " << re[i] << " eps " << eps[i];
   }
 }
