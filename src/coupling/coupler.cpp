@@ -338,11 +338,14 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       const double volume = force::sphereVolume(d);  // parcel volume = k^3 primary volumes
       const double beta = w.drag ? k3 * particleDragCoefficient(mu, dPrim, correction[q]) : 0.0;
       const Vec3 fDrag = force::drag(beta, slip);
-      Vec3 exchangedOther{}, particleOnly{};
-      if (cP >= 0)
-        (modelB ? exchangedOther : particleOnly) += force::pressureGradient(volume, {s[q][cP], s[q][cP + 1], s[q][cP + 2]});
-      if (cT >= 0)
-        (modelB ? exchangedOther : particleOnly) += force::viscousStress(volume, {s[q][cT], s[q][cT + 1], s[q][cT + 2]});
+      // pressure and viscous forces: given back to the fluid in model B, on the particle only in
+      // model A (summed first, then assigned: no reference chosen at run time, which kept both
+      // vectors in memory)
+      Vec3 undisturbedFlow{};
+      if (cP >= 0) undisturbedFlow += force::pressureGradient(volume, {s[q][cP], s[q][cP + 1], s[q][cP + 2]});
+      if (cT >= 0) undisturbedFlow += force::viscousStress(volume, {s[q][cT], s[q][cT + 1], s[q][cT + 2]});
+      Vec3 exchangedOther = modelB ? undisturbedFlow : Vec3{};
+      Vec3 particleOnly = modelB ? Vec3{} : undisturbedFlow;
       if (w.buoyancy) particleOnly += volume * buoyancy;
       if (w.virtualMass) {
         const Vec3 previous = std::isnan(previousSlip_[p].x) ? slip : previousSlip_[p];
