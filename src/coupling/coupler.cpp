@@ -120,7 +120,8 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   stencilsReady_ = true;
   const std::size_t n = particles.size();
   const std::size_t cells = solidFraction_.data().size();
-  auto particleVolume = [&](std::size_t p) { return force::sphereVolume(2.0 * particles.radius[p]); };
+  const double* radius = particles.radius.data();
+  auto particleVolume = [radius](std::size_t p) { return force::sphereVolume(2.0 * radius[p]); };
   volumeSums_.assign(static_cast<std::size_t>(omp_get_max_threads()), 0.0);
   auto buildAndSum = [&](int thread, std::size_t begin, std::size_t end) {
     scheme_->buildStencilRange(particles, topology_, stencils_, begin, end);
@@ -140,11 +141,12 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   if (fuse) {
     withExchangeLayout([&](auto layout) {
       constexpr ExchangeLayout L = decltype(layout)::value;
+      const ExchangeData data = exchangeData();
       volume = depositChannels<1 + channelsOf(L)>(
                    stencils_, cells, deposit_,
-                   [&](std::size_t p, auto& v) {
+                   [&particleVolume, data](std::size_t p, auto& v) {
                      v[0] = particleVolume(p);
-                     exchangeValues<L>(p, v + 1);
+                     exchangeValues<L>(data, p, v + 1);
                    },
                    buildAndSum)
                    .data();
@@ -496,7 +498,10 @@ void Coupler::withExchangeLayout(Body&& body) const {
 }
 
 template <Coupler::ExchangeLayout Layout>
-void Coupler::exchangeValues(std::size_t p, double* v) const {
+void Coupler::exchangeValues(const ExchangeData& data, std::size_t p, double* v) {
+  const double* beta_ = data.beta;  // (the members' names, for the formulas below)
+  const Vec3* slip_ = data.slip;
+  const Vec3* otherExchangedForce_ = data.other;
   if constexpr (Layout == ExchangeLayout::Explicit) {
     // explicit: every exchanged force on the fluid
     const Vec3 f = -(otherExchangedForce_[p] + force::drag(beta_[p], slip_[p]));
@@ -535,8 +540,9 @@ void Coupler::depositExchange(CouplingFields& fields, bool implicit) {
     withExchangeLayout([&](auto l) {
       constexpr ExchangeLayout L = decltype(l)::value;
       stride = channelsOf(L);
-      sum = depositChannels<channelsOf(L)>(stencils_, cells, deposit_, [&](std::size_t p, auto& v) {
-              exchangeValues<L>(p, v);
+      const ExchangeData data = exchangeData();
+      sum = depositChannels<channelsOf(L)>(stencils_, cells, deposit_, [data](std::size_t p, auto& v) {
+              exchangeValues<L>(data, p, v);
             }).data();
     });
   }

@@ -135,9 +135,17 @@ class Coupler {
     return l == ExchangeLayout::Explicit ? 3 : l == ExchangeLayout::Implicit ? 7 : 4;
   }
   ExchangeLayout exchangeLayout() const;
+  /// The per-particle exchange data of the force pass, as plain pointers (read in the deposit
+  /// loops, where the vectors' own pointers would be reloaded after every store).
+  struct ExchangeData {
+    const double* beta;
+    const Vec3* slip;
+    const Vec3* other;
+  };
+  ExchangeData exchangeData() const { return {beta_.data(), slip_.data(), otherExchangedForce_.data()}; }
   /// The exchange quantities of particle p that are deposited (see depositExchange).
   template <ExchangeLayout Layout>
-  void exchangeValues(std::size_t p, double* v) const;
+  static void exchangeValues(const ExchangeData& data, std::size_t p, double* v);
   /// Calls body(std::integral_constant<ExchangeLayout, L>) with the layout resolved at compile time.
   template <class Body>
   void withExchangeLayout(Body&& body) const;

@@ -88,14 +88,19 @@ const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_
     for (std::int64_t piece = begin; piece < end; piece += kDepositPiece) {
       const std::int64_t pieceEnd = std::min(end, piece + kDepositPiece);
       prepare(thread, static_cast<std::size_t>(piece), static_cast<std::size_t>(pieceEnd));
+      // the stencil arrays as plain pointers (the vectors' own would be reloaded after every store)
+      const int* countOf = s.count.data();
+      const std::size_t* cellOf = s.cell.data();
+      const double* weightOf = s.weight.data();
+      const auto capacity = static_cast<std::size_t>(s.capacity);
       for (std::int64_t p = piece; p < pieceEnd; ++p) {
         double v[C];
         values(static_cast<std::size_t>(p), v);
         const PackedValues<C> packed(v);
-        const std::size_t base = static_cast<std::size_t>(p) * s.capacity;
-        const int count = s.count[p];
+        const std::size_t base = static_cast<std::size_t>(p) * capacity;
+        const int count = countOf[p];
         for (int e = 0; e < count; ++e) {
-          packed.addTo(sum + s.cell[base + e] * C, s.weight[base + e]);
+          packed.addTo(sum + cellOf[base + e] * C, weightOf[base + e]);
         }
       }
     }
