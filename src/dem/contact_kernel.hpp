@@ -2,12 +2,14 @@
 // Force loops over the neighbour list and the wall contact list, compiled per contact-model
 // combination (dispatchLaws picks one instantiation per call, before the loop).
 //
-// Determinism: rows are split into one contiguous block per thread (static). A thread writes
+// Determinism: rows are split into one contiguous block per thread (by the listed work, from the
+// lists alone: BlockSplit). A thread writes
 // forces of its own block directly; forces on partners in a later block go to the thread's own
 // buffer, added afterwards in thread order. No atomics; bit-identical for a thread count.
 #include <omp.h>
 
 #include <algorithm>
+#include <cstring>
 #include <vector>
 
 #include "core/parallel.hpp"
@@ -37,23 +39,66 @@ void dispatchLaws(NormalLaw n, RollingLaw r, CohesionLaw c, F&& f) {
   else withRolling.template operator()<NormalLaw::HertzMindlin>();
 }
 
-/// Per-thread partner force buffers (threads 0..T-2). Thread t's rows end at end_t = n (t+1)/T and
-/// only partners j >= end_t go to its buffer, so it holds indices [end_t, n) (entry j - end_t).
+/// Work-balanced split of the rows [0, n) into one contiguous block per thread (block t:
+/// [start[t], start[t + 1])). The cost of a row is estimated from the lists alone (so that the
+/// split, like the lists, is restored by a restart): kRowCost per row (body forces, row sums,
+/// owner bookkeeping, walls gather) + 1 per listed partner (the distance test, and the contact of
+/// the touching ones) + kWallCost per wall entry. Threads 1.. also kick their block after the
+/// barrier (thread 0 kicks during its sweep), a second pass over their particles: kKickCost per
+/// row of theirs. Deterministic for a list and a thread count. The costs were fitted to the
+/// per-thread CPU samples of the contact phase of the bubbling bed on 2 threads (the row-count
+/// split gave the second thread 1.8 x the first's samples; these costs ~1.05 x).
+struct BlockSplit {
+  static constexpr double kRowCost = 4.0, kWallCost = 4.0, kKickCost = 3.0;
+  static void compute(const std::uint32_t* rowStart, const std::uint32_t* wallRowStart, std::size_t n, int team,
+                      std::vector<std::size_t>& start) {
+    start.assign(static_cast<std::size_t>(team) + 1, 0);
+    start[team] = n;
+    if (team <= 1 || n == 0) return;
+    // cumulative cost of rows [0, i): sweep only (thread 0), and sweep + kick (threads 1..)
+    auto sweep = [&](std::size_t i) {
+      return kRowCost * static_cast<double>(i) + static_cast<double>(rowStart[i]) +
+             (wallRowStart ? kWallCost * static_cast<double>(wallRowStart[i]) : 0.0);
+    };
+    auto withKick = [&](std::size_t i) { return sweep(i) + kKickCost * static_cast<double>(i); };
+    const double others = static_cast<double>(team - 1);
+    // end of block 0: the first row where its cost reaches the share of each other thread
+    auto firstRow = [&](auto&& reached) {
+      std::size_t lo = 0, hi = n;
+      while (lo < hi) {
+        const std::size_t mid = lo + (hi - lo) / 2;
+        if (reached(mid)) hi = mid;
+        else lo = mid + 1;
+      }
+      return lo;
+    };
+    start[1] = firstRow([&](std::size_t i) { return sweep(i) >= (withKick(n) - withKick(i)) / others; });
+    const double base = withKick(start[1]), share = (withKick(n) - base) / others;
+    for (int t = 2; t < team; ++t)
+      start[t] = std::max(start[t - 1], firstRow([&](std::size_t i) { return withKick(i) - base >= (t - 1) * share; }));
+  }
+};
+
+/// Per-thread partner force buffers (threads 0..T-2) and the blocks of rows. Thread t's rows end
+/// at end_t = blockStart[t + 1] and only partners j >= end_t go to its buffer, so it holds indices
+/// [end_t, n) (entry j - end_t). The buffers are all zero between force evaluations.
 struct PartnerBuffers {
   std::vector<std::vector<Vec3>> force, torque;
   std::vector<std::uint32_t> lo, hi;  // touched range per thread (particle indices)
-  static std::size_t blockEnd(std::size_t n, int t, int threads) { return n * (t + 1) / threads; }
-  void prepare(int threads, std::size_t n) {
+  std::vector<std::size_t> blockStart;
+  std::size_t blockEnd(int t) const { return blockStart[t + 1]; }
+  void prepare(int threads, std::size_t n, const std::uint32_t* rowStart, const std::uint32_t* wallRowStart) {
+    BlockSplit::compute(rowStart, wallRowStart, n, threads, blockStart);
     const std::size_t t = threads > 1 ? threads - 1 : 0;
     force.resize(t);
     torque.resize(t);
     lo.assign(t, static_cast<std::uint32_t>(n));
     hi.assign(t, 0);
     for (std::size_t k = 0; k < t; ++k) {
-      const std::size_t size = n - blockEnd(n, static_cast<int>(k), threads);
-      if (force[k].size() != size) {
-        force[k].assign(size, Vec3{});
-        torque[k].assign(size, Vec3{});
+      const std::size_t size = n - blockEnd(static_cast<int>(k));
+      if (force[k].size() < size) {  // (new entries are zero, like the merged old ones)
+        force[k].resize(size, Vec3{});
+        torque[k].resize(size, Vec3{});
       }
     }
   }
@@ -307,19 +352,14 @@ struct BlockSweep {
       b.dy[m] = d.y;
       b.dz[m] = d.z;
       b.rj[m] = rj;
-      // History travels with the entry; the list keeps zero (pairs not in contact lose their
-      // history; the touching ones get theirs back in scatterRun).
-      const Vec3 hk = h[c];
-      b.hx[m] = hk.x;
-      b.hy[m] = hk.y;
-      b.hz[m] = hk.z;
-      h[c] = Vec3{};
       m += !(dist2 >= rsum * rsum) ? 1u : 0u;  // touching: keep the entry
     }
     bool uniform = b.uniform;
     std::uint32_t firstPair = start > 0 ? b.pairIndex[0] : 0;
     for (std::uint32_t e = start; e < m; ++e) {
       const std::uint32_t j = b.partner[e], row = b.row[e];
+      // History travels with the touching entry (read here, for the touching pairs only).
+      storeLane(b.hx, b.hy, b.hz, e, history[b.entry[e]]);
       if constexpr (R == RollingLaw::Epsd) {
         const Vec3 rh = rollingHistory[b.entry[e]];
         storeLane(b.rhx, b.rhy, b.rhz, e, rh);
@@ -344,8 +384,11 @@ struct BlockSweep {
     }
     b.uniform = uniform;
     b.size = m;
+    // The list keeps zero history (pairs not in contact lose theirs; the touching ones get theirs
+    // back in scatterRun): one block clear of the run's entries instead of a store per candidate.
+    std::memset(static_cast<void*>(h), 0, sizeof(Vec3) * count);
     if constexpr (R == RollingLaw::Epsd)
-      for (std::uint32_t c = 0; c < count; ++c) rollingHistory[base + c] = Vec3{};
+      std::memset(static_cast<void*>(rollingHistory + base), 0, sizeof(Vec3) * count);
   }
 
   /// Adds the evaluated pairs of the batch in list order: to their row's sum (b.rowForce/Torque,
@@ -404,13 +447,10 @@ struct BlockSweep {
     b.uniform = true;
     if (count > WallBatch::kCapacity) return false;
     if (count == 0) return true;
-    for (std::size_t i = rb; i < re; ++i) {
-      const std::uint32_t from = wallRowStart[i] - base, length = wallRowStart[i + 1] - wallRowStart[i];
-      const std::uint32_t row = static_cast<std::uint32_t>(i - rb);
-      for (std::uint32_t q = 0; q < WallBatch::kRowFill; ++q) b.owner[from + q] = row;
-      for (std::uint32_t q = WallBatch::kRowFill; q < length; ++q) b.owner[from + q] = row;
-    }
     WallContactList& list = *wallList;
+    // The particle of each entry comes with the list (most rows have no wall entry: no per-row work).
+    const std::uint32_t* const particleOf = list.particle.data() + base;
+    const std::uint32_t runStart = static_cast<std::uint32_t>(rb);
     const WallPrimitive* const primitives = walls->primitives->data();
     const std::uint32_t* const primitiveOf = list.primitive.data() + base;
     Vec3* const h = list.tangentialHistory.data() + base;
@@ -418,7 +458,7 @@ struct BlockSweep {
     Vec3* const listForce = list.force.data() + base;
     std::uint32_t m = 0;
     for (std::uint32_t c = 0; c < count; ++c) {
-      const std::uint32_t row = b.owner[c];
+      const std::uint32_t row = particleOf[c] - runStart;
       const std::size_t i = rb + row;
       const WallPrimitive& prim = primitives[primitiveOf[c]];
       const Vec3 xi = position[i];
@@ -626,7 +666,6 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
                           double halfKick, const InverseInertia& inverse, PartnerBuffers& buffers) {
   const std::size_t n = p.size();
   const int threads = omp_get_max_threads();
-  buffers.prepare(threads, n);
   BlockSweep<N, R, C> common{};
   common.particles = &p;
   common.force = p.force.data();
@@ -672,7 +711,10 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
   {
     const int t = omp_get_thread_num();
     const int team = omp_get_num_threads();
-    const std::size_t begin = n * t / team, end = n * (t + 1) / team;
+#pragma omp single
+    buffers.prepare(team, n, list.rowStart.data(), walls.primitives->empty() ? nullptr : wallList.rowStart.data());
+    // (implicit barrier)
+    const std::size_t begin = buffers.blockStart[t], end = buffers.blockStart[t + 1];
     thread_local ContactBatch batch;
     thread_local WallBatch wallBatch;
     BlockSweep<N, R, C> sweep = common;
@@ -698,7 +740,7 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
       for (int s = 0; s < team - 1; ++s) {
         const std::size_t from = std::max<std::size_t>(begin, buffers.lo[s]);
         const std::size_t to = std::min<std::size_t>(end, buffers.hi[s]);
-        const std::size_t offset = PartnerBuffers::blockEnd(n, s, team);
+        const std::size_t offset = buffers.blockEnd(s);
         Vec3* fs = buffers.force[s].data();
         Vec3* ts = buffers.torque[s].data();
         for (std::size_t i = from; i < to; ++i) {

@@ -30,6 +30,16 @@ void CellGrid::build(const std::vector<Vec3>& x, const Vec3& boxMin, const Vec3&
     dims[a] = std::max(1, static_cast<int>(std::floor(size[a] / h)));
     width[a] = size[a] / dims[a];  // >= h; the cells tile the box exactly (periodic wrap)
   }
+  // Finer cells along x where the cell count stays moderate (4 bytes per cell, temporary).
+  xSplit = 1;
+  for (int split = 3; split > 1 && xSplit == 1; --split) {
+    const int splitDims = std::max(1, static_cast<int>(std::floor(size.x * split / h)));
+    if (static_cast<double>(splitDims) * dims[1] * dims[2] <= 3.0 * maxCells && splitDims >= dims[0] * split) {
+      xSplit = split;
+      dims[0] = splitDims;
+      width[0] = size.x / dims[0];  // >= h / split
+    }
+  }
   cellStart.assign(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] + 1, 0);
   cellOf.resize(n);
   parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t i) {
@@ -53,6 +63,29 @@ std::uint64_t spreadBits(std::uint64_t v) {  // 21 bits -> every third bit
   v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
   v = (v | v << 2) & 0x1249249249249249ULL;
   return v;
+}
+
+/// Runs of consecutive cells along x within `reach` cells of c (wrapped if periodic): [first,
+/// last] pairs, at most 2 (a periodic wrap), each cell once.
+int xCellRuns(int c, int dim, int reach, bool periodic, int (*runs)[2]) {
+  if (2 * reach + 1 >= dim) {
+    runs[0][0] = 0, runs[0][1] = dim - 1;
+    return 1;
+  }
+  const int first = c - reach, last = c + reach;
+  if (!periodic || (first >= 0 && last < dim)) {
+    runs[0][0] = std::max(first, 0), runs[0][1] = std::min(last, dim - 1);
+    return 1;
+  }
+  // wrapped: [0, last - dim] or [first + dim, dim - 1] beside the in-range part (no overlap: 2 reach + 1 < dim)
+  if (first < 0) {
+    runs[0][0] = 0, runs[0][1] = last;
+    runs[1][0] = first + dim, runs[1][1] = dim - 1;
+  } else {
+    runs[0][0] = 0, runs[0][1] = last - dim;
+    runs[1][0] = first, runs[1][1] = dim - 1;
+  }
+  return 2;
 }
 
 /// Neighbour cell offsets along one axis: -1, 0, +1, wrapped if periodic, without repeats.
@@ -100,18 +133,6 @@ struct CellSortedSphere {
   double r;
 };
 
-/// Runs of consecutive cells among up to 3 cell indices along x: [first, last] pairs.
-int consecutiveRuns(int* cells, int count, int (*runs)[2]) {
-  for (int q = 1; q < count; ++q)  // insertion sort of <= 3 values
-    for (int m = q; m > 0 && cells[m - 1] > cells[m]; --m) std::swap(cells[m - 1], cells[m]);
-  int m = 0;
-  for (int q = 0; q < count; ++q) {
-    if (m > 0 && cells[q] == runs[m - 1][1] + 1) runs[m - 1][1] = cells[q];
-    else runs[m][0] = runs[m][1] = cells[q], ++m;
-  }
-  return m;
-}
-
 }  // namespace
 
 void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Vec3& boxMin, const Vec3& boxMax,
@@ -127,23 +148,23 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
     sphere[s] = {p.position[i], p.radius[i]};
   });
 
-  // Appends the partners j > i within the cut-off (in cell order; sorted afterwards). The three
-  // cells along x of a (y, z) row of cells are consecutive in the cell order: one range. The row
-  // is written through a raw pointer into space for all candidates (no per-entry capacity check,
-  // and the compiler need not reload what push_back might have changed).
+  // Appends the partners j > i within the cut-off, ascending (the force loop walks memory forwards
+  // and knows the row's last partner). The cells along x of a (y, z) row of cells are consecutive
+  // in the cell order: one range (two across a periodic wrap). The candidates are tested into a
+  // per-thread scratch row through a raw pointer (no per-entry capacity check, no zero fill), the
+  // few kept ones sorted there by insertion and appended.
   const CellSortedSphere* spheres = sphere.data();
   const std::uint32_t* sorted = grid.sorted.data();
   const std::uint32_t* cellStart = grid.cellStart.data();
-  auto appendPartners = [&](std::size_t i, std::vector<std::uint32_t>& out) {
+  auto appendPartners = [&]<bool Periodic>(std::size_t i, std::vector<std::uint32_t>& out) {
     const std::uint32_t cell = grid.cellOf[i];
     const int c[3] = {static_cast<int>(cell % grid.dims[0]), static_cast<int>((cell / grid.dims[0]) % grid.dims[1]),
                       static_cast<int>(cell / (static_cast<std::uint32_t>(grid.dims[0]) * grid.dims[1]))};
-    int nx[3], ny[3], nz[3], runs[3][2];
-    const int cx = neighbourCells(c[0], grid.dims[0], box.periodic[0], nx);
+    int ny[3], nz[3], runs[2][2];
+    const int rx = xCellRuns(c[0], grid.dims[0], grid.xSplit, box.periodic[0], runs);
     const int cy = neighbourCells(c[1], grid.dims[1], box.periodic[1], ny);
     const int cz = neighbourCells(c[2], grid.dims[2], box.periodic[2], nz);
-    const int rx = consecutiveRuns(nx, cx, runs);
-    std::uint32_t range[27][2];  // candidate ranges in the cell order
+    std::uint32_t range[18][2];  // candidate ranges in the cell order
     int ranges = 0;
     std::uint32_t candidates = 0;
     for (int a = 0; a < cz; ++a)
@@ -156,23 +177,30 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
           ++ranges;
         }
       }
-    const std::size_t before = out.size();
-    out.resize(before + candidates);
-    std::uint32_t* row = out.data() + before;
+    thread_local std::vector<std::uint32_t> scratchRow;
+    if (scratchRow.size() < candidates) scratchRow.resize(candidates);
+    std::uint32_t* const row = scratchRow.data();
     std::uint32_t kept = 0;
     const Vec3 xi = p.position[i];
     const double ri = p.radius[i] + skin;
     const auto self = static_cast<std::uint32_t>(i);
+    const PeriodicBox localBox = box;  // (the row stores cannot change it: no reloads)
     // Branch-free test (half the candidates have j <= i, at random: a branch on it mispredicts).
     for (int q = 0; q < ranges; ++q)
       for (std::uint32_t s = range[q][0]; s < range[q][1]; ++s) {
         const std::uint32_t j = sorted[s];
-        const Vec3 dx = box.minimumImage(xi - spheres[s].x);
+        const Vec3 dx = Periodic ? localBox.minimumImage(xi - spheres[s].x) : xi - spheres[s].x;
         const double cut = ri + spheres[s].r;
         row[kept] = j;
         kept += (j > self) & (normSquared(dx) < cut * cut) ? 1u : 0u;
       }
-    out.resize(before + kept);
+    for (std::uint32_t k = 1; k < kept; ++k) {  // insertion sort (a few entries)
+      const std::uint32_t value = row[k];
+      std::uint32_t m = k;
+      for (; m > 0 && row[m - 1] > value; --m) row[m] = row[m - 1];
+      row[m] = value;
+    }
+    out.insert(out.end(), row, row + kept);
   };
 
   std::vector<std::uint32_t> oldStart = std::move(rowStart);
@@ -226,10 +254,8 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
   buildCompressedRows(
       n, scratch_, rowStart, partner,
       [&](std::size_t i, std::vector<std::uint32_t>& out) {
-        const std::size_t before = out.size();
-        appendPartners(i, out);
-        // Ascending partners: the force loop walks memory forwards and knows the row's last partner.
-        std::sort(out.begin() + static_cast<std::ptrdiff_t>(before), out.end());
+        if (box.anyPeriodic) appendPartners.template operator()<true>(i, out);
+        else appendPartners.template operator()<false>(i, out);
       },
       [&](std::size_t entries) {
         tangentialHistory.assign(entries, Vec3{});

@@ -389,7 +389,7 @@ std::size_t System::memoryBytes() const {
                        p.externalTorque.capacity() + positionAtBuild_.capacity()) *
                           sizeof(Vec3);
   bytes += list_.memoryBytes();
-  bytes += wallList_.rowStart.capacity() * 4 + wallList_.primitive.capacity() * 4 +
+  bytes += wallList_.rowStart.capacity() * 4 + wallList_.primitive.capacity() * 4 + wallList_.particle.capacity() * 4 +
            (wallList_.tangentialHistory.capacity() + wallList_.rollingHistory.capacity() +
             wallList_.force.capacity() + wallList_.point.capacity()) *
                sizeof(Vec3);

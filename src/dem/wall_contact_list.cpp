@@ -31,8 +31,10 @@ void WallContactList::build(const ParticleSet& p, const std::vector<WallPrimitiv
         rollingHistory.assign(withRollingHistory ? m : 0, Vec3{});
         force.assign(m, Vec3{});
         point.assign(m, Vec3{});
+        particle.resize(m);
       },
       [&](std::size_t i) {  // history carried over by (particle, primitive)
+        for (std::uint32_t k = rowStart[i]; k < rowStart[i + 1]; ++k) particle[k] = static_cast<std::uint32_t>(i);
         const std::int64_t oi = i < previousIndex.size() ? previousIndex[i] : -1;
         if (oi < 0 || oi >= oldRows) return;
         for (std::uint32_t k = rowStart[i]; k < rowStart[i + 1]; ++k)
@@ -61,8 +63,12 @@ void WallContactList::load(BinaryReader& in) {
   rollingHistory = in.getVector<Vec3>();
   force = in.getVector<Vec3>();
   point = in.getVector<Vec3>();
-  if (tangentialHistory.size() != primitive.size() || force.size() != primitive.size())
+  if (tangentialHistory.size() != primitive.size() || force.size() != primitive.size() ||
+      (!rowStart.empty() && rowStart.back() != primitive.size()))
     throw CheckpointError("checkpoint is corrupt: DEM wall contact arrays do not match");
+  particle.resize(primitive.size());
+  for (std::size_t i = 0; i + 1 < rowStart.size(); ++i)
+    for (std::uint32_t k = rowStart[i]; k < rowStart[i + 1]; ++k) particle[k] = static_cast<std::uint32_t>(i);
 }
 
 }  // namespace gf::dem

@@ -19,6 +19,7 @@ class WallContactList {
   std::vector<Vec3> rollingHistory;      // EPSD only
   std::vector<Vec3> force;               // on the particle, last evaluation, N
   std::vector<Vec3> point;               // contact point, last evaluation, m
+  std::vector<std::uint32_t> particle;   // particle (row) of each entry; derived from rowStart, not saved
 
   void build(const ParticleSet& p, const std::vector<WallPrimitive>& primitives, double skin,
              const std::vector<std::int64_t>& previousIndex, bool withRollingHistory);

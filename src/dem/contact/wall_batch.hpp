@@ -16,11 +16,9 @@ namespace gf::dem {
 
 struct WallBatch {
   static constexpr std::uint32_t kCapacity = 256;  // wall entries of a run
-  static constexpr std::uint32_t kRowFill = 4;     // owner entries written per row without a loop
 
   std::uint32_t size = 0;  // touching entries gathered
   bool uniform = true;     // all entries use coefficients pairIndex[0]
-  alignas(64) std::uint32_t owner[kCapacity + kRowFill];  // run's row of each wall entry
   alignas(64) std::uint32_t entry[kCapacity];             // wall-list entry k
   alignas(64) std::uint32_t row[kCapacity];               // run's row
   alignas(64) std::uint32_t pairIndex[kCapacity];         // type_i * types + material of the wall
