@@ -301,7 +301,9 @@ void Solver::project(double dt, double g0) {
   stats_.pressureResidual = res.relativeResidual;
   parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
     const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
-    for (int i = 0; i < nx; ++i) phi_(i, j, k) = poissonX_[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * line];
+    double* phiLine = phi_.data().data() + phi_.index(0, j, k);
+    const double* x = poissonX_.data() + static_cast<std::size_t>(nx) * line;
+    for (int i = 0; i < nx; ++i) phiLine[i] = x[i];
   });
   fillCellGhosts(phi_, bc_, CellGhostKind::PressureIncrement);
   forOutletCells([&](const int*, std::size_t cc, std::size_t, std::ptrdiff_t inward, double phiB, int) {
