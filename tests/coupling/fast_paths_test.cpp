@@ -141,6 +141,36 @@ TEST(FastPaths, DividedBlockPathGivesTheSameStencilsWithAndWithoutAvx512) {
   }
 }
 
+TEST(FastPaths, DividedGroupsOfEightEqualRadiiGiveTheSameStencilsAsTheGenericPath) {
+  // the AVX-512 block path takes 8 particles of one radius side by side (splits per lane) and the
+  // block cells from per-axis tables: the bed's case (one radius, centres inside the box or a
+  // little outside: folds and wraps), plus runs broken by another radius and centres far outside
+  // (beyond the tables: the per-particle form) at places that cut groups of 8 anywhere
+  const CartesianGrid g = makeGrid({2, 6, 7}, {0.0075, 0.005, 0.005}, {0.0, 0.001, -0.002});
+  dem::ParticleSet particles =
+      randomParticles(4000, 0.00125, 0.00125, {-0.004, -0.004, -0.006}, {0.019, 0.035, 0.037}, 17);
+  for (std::size_t p = 0; p < particles.size(); ++p) particles.radius[p] = 0.00125;
+  for (std::size_t p = 37; p < particles.size(); p += 101) particles.radius[p] = 0.001;
+  for (std::size_t p = 500; p < particles.size(); p += 613) particles.position[p].z = 0.06;
+  const auto scheme = makeScheme("divided");
+  for (const auto& periodic : kPeriodicities) {
+    const GridTopology t(g, periodic);
+    ParticleStencils vector, generic;
+    scheme->buildStencils(particles, t, vector);
+    allowDividedAvx512(false);
+    scheme->buildStencils(particles, t, generic);
+    allowDividedAvx512(true);
+    ASSERT_EQ(vector.capacity, 8);
+    ASSERT_EQ(vector.count, generic.count);
+    for (std::size_t p = 0; p < particles.size(); ++p)
+      for (int e = 0; e < generic.count[p]; ++e) {
+        const std::size_t q = p * generic.capacity + e;
+        ASSERT_EQ(vector.cell[q], generic.cell[q]) << "particle " << p;
+        ASSERT_EQ(vector.weight[q], generic.weight[q]) << "particle " << p;
+      }
+  }
+}
+
 TEST(FastPaths, TrilinearBlockSamplingIsBitIdenticalToTheSampler) {
   // sampleTrilinearBlock (vector registers, AVX-512 / AVX2 clones) against TrilinearSampler::sampleAt
   const CartesianGrid g = makeGrid({3, 4, 5}, {0.01, 0.008, 0.012}, {-0.004, 0.002, 0.001});

@@ -225,6 +225,13 @@ class DividedVoidFraction final : public VoidFractionScheme {
     AxisOffsets axis[3];
     std::size_t shift;             // flat(0, 0, 0)
     double weightOf[kPoints + 1];  // weight of a cell holding c points
+    /// Per axis and lower cell lo (kFirst .. cells + 1): the axis's offsets of the 8 block cells
+    /// (lane b: lo or lo + 1 by bit a of b) and whether both cells map to one (fold mask, ~0)
+    struct alignas(64) BlockLanes {
+      std::int64_t lane[8];
+    };
+    std::vector<BlockLanes> lanes[3];
+    std::vector<std::uint64_t> fold[3];
     explicit BlockTables(const GridTopology& t)
         : cells(t.grid.cells),
           ghosts(t.grid.ghosts),
@@ -232,6 +239,15 @@ class DividedVoidFraction final : public VoidFractionScheme {
           axis{{t, 0, 1}, {t, 1, extent(t, 0)}, {t, 2, extent(t, 0) * extent(t, 1)}},
           shift(static_cast<std::size_t>(t.grid.ghosts) * (extent(t, 0) * extent(t, 1) + extent(t, 0) + 1)) {
       for (int c = 0; c <= kPoints; ++c) weightOf[c] = c * (1.0 / kPoints);
+      for (int a = 0; a < 3; ++a)
+        for (int lo = AxisOffsets::kFirst; lo <= cells[a] + 1; ++lo) {
+          std::size_t offset[2];
+          axis[a].pair(t, lo, offset[0], offset[1]);
+          BlockLanes l;
+          for (int b = 0; b < 8; ++b) l.lane[b] = static_cast<std::int64_t>(offset[(b >> a) & 1]);
+          lanes[a].push_back(l);
+          fold[a].push_back(offset[0] == offset[1] ? ~0ull : 0ull);
+        }
     }
     bool fits(const GridTopology& t) const {
       return cells == t.grid.cells && ghosts == t.grid.ghosts && periodic == t.periodic;
@@ -277,16 +293,63 @@ class DividedVoidFraction final : public VoidFractionScheme {
 
   /// Folds the upper bytes of the axes whose two cells map to one cell onto the lower ones (as addBlock).
   static std::uint64_t foldCounts(std::uint64_t counts, const std::size_t (&offset)[3][2]) {
+    return foldCountsWith(counts, {offset[0][0] == offset[0][1] ? ~0ull : 0ull,
+                                   offset[1][0] == offset[1][1] ? ~0ull : 0ull,
+                                   offset[2][0] == offset[2][1] ? ~0ull : 0ull});
+  }
+  /// foldCounts with the fold masks per axis given (~0: the axis folds).
+  static std::uint64_t foldCountsWith(std::uint64_t counts, const std::array<std::uint64_t, 3>& fold) {
     constexpr std::uint64_t lowerHalf[3] = {0x00FF00FF00FF00FFull, 0x0000FFFF0000FFFFull, 0x00000000FFFFFFFFull};
     for (int a = 0; a < 3; ++a) {
-      const std::uint64_t fold = offset[a][0] == offset[a][1] ? ~0ull : 0ull;
-      const std::uint64_t keep = lowerHalf[a] | ~fold;
-      counts = (counts & keep) + ((counts >> (8 << a)) & lowerHalf[a] & fold);
+      const std::uint64_t keep = lowerHalf[a] | ~fold[a];
+      counts = (counts & keep) + ((counts >> (8 << a)) & lowerHalf[a] & fold[a]);
     }
     return counts;
   }
 
 #if defined(GF_DIVIDED_AVX512)
+  /// The lower cells and splits (as splitAxis) of the 8 particles from `first` into lane q0..q0+7
+  /// of lower/split, one particle per vector lane: per axis and unit coordinate v the same
+  /// operations (x + r u_v - origin) * inv as the per-particle form, the floor by rounding down
+  /// (floorToInt of a value in int range), the split as 1 + the number of upper coordinates below
+  /// lo + 1. Returns false (nothing written) where the radii differ or a lower cell lies outside
+  /// the offset tables (the caller takes the per-particle form from there).
+  __attribute__((target("avx512f,avx512vl,avx2,popcnt"))) static bool splitGroupOf8(
+      const Vec3* position, const double* radius, std::size_t first, const GridTopology& t, const BlockTables& tables,
+      ScaledPoints& points, int (&lower)[3][16], int (&split)[3][16], int q0) {
+    const __m512d r = _mm512_loadu_pd(radius + first);
+    if (_mm512_cmp_pd_mask(r, _mm512_set1_pd(radius[first]), _CMP_EQ_OQ) != 0xFF) return false;
+    if (!points.scaledFor(radius[first])) points.scale(radius[first]);
+    const double origin[3] = {t.grid.origin.x, t.grid.origin.y, t.grid.origin.z};
+    const double inv[3] = {t.inverseSpacing.x, t.inverseSpacing.y, t.inverseSpacing.z};
+    const __m256i lane3 = _mm256_set_epi32(21, 18, 15, 12, 9, 6, 3, 0);  // Vec3 stride in doubles
+    const double* base = &position[first].x;
+    __m256i lo[3], count[3];
+    for (int a = 0; a < 3; ++a) {
+      const __m512d x = _mm512_i32gather_pd(lane3, base + a, 8);
+      const __m512d o = _mm512_set1_pd(origin[a]), h = _mm512_set1_pd(inv[a]);
+      const __m512d lowest = _mm512_mul_pd(_mm512_sub_pd(_mm512_add_pd(x, _mm512_set1_pd(points.value[a][0])), o), h);
+      const __m512d floorOf = _mm512_roundscale_pd(lowest, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+      lo[a] = _mm512_cvtpd_epi32(floorOf);  // exact (an integer; NaN or out of range: INT_MIN)
+      // inside the offset tables (kFirst .. cells + 1 for the pair), else the per-particle form
+      const __m256i first = _mm256_set1_epi32(AxisOffsets::kFirst), last = _mm256_set1_epi32(tables.cells[a] + 1);
+      if (_mm256_cmplt_epi32_mask(lo[a], first) || _mm256_cmpgt_epi32_mask(lo[a], last)) return false;
+      const __m512d upper = _mm512_add_pd(floorOf, _mm512_set1_pd(1.0));  // lo + 1.0 exactly
+      __m256i s = _mm256_set1_epi32(1);  // the lowest coordinate lies below lo + 1
+      for (int v = 1; v < kValues; ++v) {
+        const __m512d scaled =
+            _mm512_mul_pd(_mm512_sub_pd(_mm512_add_pd(x, _mm512_set1_pd(points.value[a][v])), o), h);
+        s = _mm256_mask_add_epi32(s, _mm512_cmp_pd_mask(scaled, upper, _CMP_LT_OQ), s, _mm256_set1_epi32(1));
+      }
+      count[a] = s;
+    }
+    for (int a = 0; a < 3; ++a) {
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(lower[a] + q0), lo[a]);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(split[a] + q0), count[a]);
+    }
+    return true;
+  }
+
   /// addBlock for particles [begin, end) with AVX-512: per axis the 8 upper coordinates compared
   /// with the cell face in one instruction (the same operations per coordinate as splitAxis), the
   /// 8 cells and weights (count x (1/29), the values of weightOf) built in one register each and
@@ -315,13 +378,16 @@ class DividedVoidFraction final : public VoidFractionScheme {
     constexpr int kBatch = 16;
     for (std::size_t b0 = begin; b0 < end; b0 += kBatch) {
       const int size = static_cast<int>(std::min<std::size_t>(kBatch, end - b0));
-      int lower[kBatch][3], split[kBatch][3];
-      for (int q = 0; q < size; ++q) {
+      int lower[3][kBatch], split[3][kBatch];
+      int q0 = 0;
+      // groups of 8 particles of one radius side by side (one lane each): the same operations
+      // per coordinate as the per-particle form below
+      for (; q0 + 8 <= size; q0 += 8)
+        if (!splitGroupOf8(position, radius, b0 + q0, t, tables, points, lower, split, q0)) break;
+      for (int q = q0; q < size; ++q) {
         const std::size_t p = b0 + q;
-        if (!points.scaledFor(radius[p])) {
-          points.scale(radius[p]);
-          for (int a = 0; a < 3; ++a) upperPoints[a] = _mm512_loadu_pd(points.value[a] + 1);
-        }
+        if (!points.scaledFor(radius[p])) points.scale(radius[p]);
+        for (int a = 0; a < 3; ++a) upperPoints[a] = _mm512_loadu_pd(points.value[a] + 1);
         for (int a = 0; a < 3; ++a) {
           const double xa = position[p][a];
           const int lo = floorToInt((xa + points.value[a][0] - origin[a]) * inv[a]);
@@ -329,21 +395,35 @@ class DividedVoidFraction final : public VoidFractionScheme {
               _mm512_sub_pd(_mm512_add_pd(_mm512_set1_pd(xa), upperPoints[a]), _mm512_set1_pd(origin[a])),
               _mm512_set1_pd(inv[a]));
           const __mmask8 below = _mm512_cmp_pd_mask(scaled, _mm512_set1_pd(lo + 1.0), _CMP_LT_OQ);
-          lower[q][a] = lo;
-          split[q][a] = 1 + _mm_popcnt_u32(static_cast<unsigned>(below));
+          lower[a][q] = lo;
+          split[a][q] = 1 + _mm_popcnt_u32(static_cast<unsigned>(below));
         }
       }
       for (int q = 0; q < size; ++q) {
         const std::size_t p = b0 + q;
-        std::size_t offset[3][2];
-        __m512i cells = shift;
-        for (int a = 0; a < 3; ++a) {
-          axisOffsets[a].pair(t, lower[q][a], offset[a][0], offset[a][1]);
-          cells = _mm512_add_epi64(cells, _mm512_mask_blend_epi64(upperLanes[a],
-                                                                  _mm512_set1_epi64(static_cast<long long>(offset[a][0])),
-                                                                  _mm512_set1_epi64(static_cast<long long>(offset[a][1]))));
+        // the block's cells and fold masks from the per-axis tables (lower cells inside them; the
+        // same integers as pair() and foldCounts), else as addBlock
+        const auto kx = static_cast<std::size_t>(lower[0][q] - AxisOffsets::kFirst);
+        const auto ky = static_cast<std::size_t>(lower[1][q] - AxisOffsets::kFirst);
+        const auto kz = static_cast<std::size_t>(lower[2][q] - AxisOffsets::kFirst);
+        __m512i cells;
+        std::uint64_t counts = unit.packedCount[split[0][q]][split[1][q]][split[2][q]];
+        if (kx < tables.fold[0].size() && ky < tables.fold[1].size() && kz < tables.fold[2].size()) {
+          cells = _mm512_add_epi64(
+              _mm512_add_epi64(shift, _mm512_load_si512(tables.lanes[0][kx].lane)),
+              _mm512_add_epi64(_mm512_load_si512(tables.lanes[1][ky].lane), _mm512_load_si512(tables.lanes[2][kz].lane)));
+          counts = foldCountsWith(counts, {tables.fold[0][kx], tables.fold[1][ky], tables.fold[2][kz]});
+        } else {
+          std::size_t offset[3][2];
+          cells = shift;
+          for (int a = 0; a < 3; ++a) {
+            axisOffsets[a].pair(t, lower[a][q], offset[a][0], offset[a][1]);
+            cells = _mm512_add_epi64(cells, _mm512_mask_blend_epi64(upperLanes[a],
+                                                                    _mm512_set1_epi64(static_cast<long long>(offset[a][0])),
+                                                                    _mm512_set1_epi64(static_cast<long long>(offset[a][1]))));
+          }
+          counts = foldCounts(counts, offset);
         }
-        const std::uint64_t counts = foldCounts(unit.packedCount[split[q][0]][split[q][1]][split[q][2]], offset);
         const __m128i bytes = _mm_cvtsi64_si128(static_cast<long long>(counts));
         const __m512i count64 = _mm512_cvtepu8_epi64(bytes);
         const __mmask8 nonEmpty = _mm512_test_epi64_mask(count64, count64);
