@@ -11,6 +11,10 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define GF_DEPOSIT_AVX2 1
+#endif
 
 #include <algorithm>
 #include <array>
@@ -65,6 +69,59 @@ struct PackedValues {
 #endif
 };
 
+/// Whether deposits of 4 or more channels may add four channels per operation (depositPieceWide):
+/// the CPU has AVX2 and no test switched it off (allowWideDeposit).
+inline bool& wideDepositAllowed() {
+  static bool allowed = true;
+  return allowed;
+}
+inline void allowWideDeposit(bool allowed) { wideDepositAllowed() = allowed; }
+inline bool useWideDeposit() {
+#if defined(GF_DEPOSIT_AVX2)
+  static const bool cpuHasIt = __builtin_cpu_supports("avx2");
+  return cpuHasIt && wideDepositAllowed();
+#else
+  return false;
+#endif
+}
+
+#if defined(GF_DEPOSIT_AVX2)
+/// The deposit of particles [begin, end) with four channels per 256-bit operation (then a pair,
+/// then a single channel): per lane the same multiplication and addition as
+/// target[ch] += w * v[ch] (no fused multiply-add: not enabled for this function), the same bits.
+template <int C, class Values>
+__attribute__((target("avx2"))) void depositPieceWide(const int* countOf, const std::size_t* cellOf,
+                                                      const double* weightOf, std::size_t capacity,
+                                                      std::int64_t begin, std::int64_t end, double* sum,
+                                                      Values& values) {
+  constexpr int kQuads = C / 4;
+  constexpr int kPair = (C % 4) / 2;  // 0 or 1
+  constexpr bool kLast = C % 2 == 1;
+  for (std::int64_t p = begin; p < end; ++p) {
+    double v[C];
+    values(static_cast<std::size_t>(p), v);
+    __m256d quad[kQuads];
+    for (int k = 0; k < kQuads; ++k) quad[k] = _mm256_set_pd(v[4 * k + 3], v[4 * k + 2], v[4 * k + 1], v[4 * k]);
+    __m128d pair = _mm_setzero_pd();
+    if constexpr (kPair == 1) pair = _mm_set_pd(v[4 * kQuads + 1], v[4 * kQuads]);
+    const double last = v[C - 1];
+    const std::size_t base = static_cast<std::size_t>(p) * capacity;
+    const int count = countOf[p];
+    for (int e = 0; e < count; ++e) {
+      double* target = sum + cellOf[base + e] * C;
+      const double w = weightOf[base + e];
+      const __m256d w4 = _mm256_set1_pd(w);
+      for (int k = 0; k < kQuads; ++k)
+        _mm256_storeu_pd(target + 4 * k, _mm256_add_pd(_mm256_loadu_pd(target + 4 * k), _mm256_mul_pd(w4, quad[k])));
+      if constexpr (kPair == 1)
+        _mm_storeu_pd(target + 4 * kQuads,
+                      _mm_add_pd(_mm_loadu_pd(target + 4 * kQuads), _mm_mul_pd(_mm_set1_pd(w), pair)));
+      if constexpr (kLast) target[C - 1] += w * last;
+    }
+  }
+}
+#endif
+
 /// values(p, double (&v)[C]) writes the C values of particle p. Returns the interleaved sums over
 /// `cells` flat cells (over b.runs if set; valid until the next deposit with the same buffers).
 /// prepare(thread, begin, end) runs on the depositing thread (0-based index in the team) just
@@ -84,6 +141,7 @@ const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_
     for (std::int64_t r = 0; r < runCount; ++r)
       std::fill(sum + runs[r][0] * C, sum + (runs[r][0] + runs[r][1]) * C, 0.0);
   };
+  const bool wide = useWideDeposit();
   auto accumulate = [&](int thread, std::int64_t begin, std::int64_t end, double* sum) {
     for (std::int64_t piece = begin; piece < end; piece += kDepositPiece) {
       const std::int64_t pieceEnd = std::min(end, piece + kDepositPiece);
@@ -93,6 +151,14 @@ const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_
       const std::size_t* cellOf = s.cell.data();
       const double* weightOf = s.weight.data();
       const auto capacity = static_cast<std::size_t>(s.capacity);
+#if defined(GF_DEPOSIT_AVX2)
+      if constexpr (C >= 4) {
+        if (wide) {
+          depositPieceWide<C>(countOf, cellOf, weightOf, capacity, piece, pieceEnd, sum, values);
+          continue;
+        }
+      }
+#endif
       for (std::int64_t p = piece; p < pieceEnd; ++p) {
         double v[C];
         values(static_cast<std::size_t>(p), v);

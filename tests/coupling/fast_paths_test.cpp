@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "coupling/deposit.hpp"
 #include "coupling/drag/dispatch.hpp"
 #include "coupling/drag/gidaspow.hpp"
 #include "coupling/interpolation.hpp"
@@ -168,6 +169,45 @@ TEST(FastPaths, DividedGroupsOfEightEqualRadiiGiveTheSameStencilsAsTheGenericPat
         ASSERT_EQ(vector.cell[q], generic.cell[q]) << "particle " << p;
         ASSERT_EQ(vector.weight[q], generic.weight[q]) << "particle " << p;
       }
+  }
+}
+
+namespace {
+/// depositChannels<C> of random signed values over the divided stencils of `particles`, with or
+/// without the four-channels-per-operation form.
+template <int C>
+std::vector<double> depositRandom(const ParticleStencils& s, std::size_t cells, bool wide) {
+  std::vector<double> values(s.size() * C);
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double& v : values) v = u(rng) * std::pow(10.0, 6.0 * u(rng));  // mixed magnitudes and signs
+  allowWideDeposit(wide);
+  DepositBuffers b;
+  const std::vector<double> sums = depositChannels<C>(s, cells, b, [&](std::size_t p, double (&v)[C]) {
+    for (int ch = 0; ch < C; ++ch) v[ch] = values[p * C + ch];
+  });
+  allowWideDeposit(true);
+  return sums;
+}
+}  // namespace
+
+TEST(FastPaths, WideDepositIsBitIdenticalToThePairwiseDeposit) {
+  // channels 4 at a time (AVX2, where the CPU has it) against 2 at a time, for the channel counts
+  // of the fused volume + exchange deposits (5 drag-only, 8 implicit) and others; particles
+  // crowded in few cells (long chains per cell), 1 thread and the threads at hand
+  const CartesianGrid g = makeGrid({2, 4, 5}, {0.0075, 0.005, 0.005});
+  const dem::ParticleSet particles = randomParticles(6000, 0.00125, 0.00125, {0, 0, 0}, {0.015, 0.02, 0.025}, 31);
+  const auto scheme = makeScheme("divided");
+  const GridTopology t(g, {true, false, false});
+  ParticleStencils s;
+  scheme->buildStencils(particles, t, s);
+  const std::size_t cells = Field(g).data().size();  // flat indices with ghosts
+  for (int threads : {1, omp_get_max_threads()}) {
+    omp_set_num_threads(threads);
+    EXPECT_EQ(depositRandom<5>(s, cells, true), depositRandom<5>(s, cells, false));
+    EXPECT_EQ(depositRandom<8>(s, cells, true), depositRandom<8>(s, cells, false));
+    EXPECT_EQ(depositRandom<4>(s, cells, true), depositRandom<4>(s, cells, false));
+    EXPECT_EQ(depositRandom<7>(s, cells, true), depositRandom<7>(s, cells, false));
   }
 }
 
