@@ -322,11 +322,17 @@ class DividedVoidFraction final : public VoidFractionScheme {
     if (!points.scaledFor(radius[first])) points.scale(radius[first]);
     const double origin[3] = {t.grid.origin.x, t.grid.origin.y, t.grid.origin.z};
     const double inv[3] = {t.inverseSpacing.x, t.inverseSpacing.y, t.inverseSpacing.z};
-    const __m256i lane3 = _mm256_set_epi32(21, 18, 15, 12, 9, 6, 3, 0);  // Vec3 stride in doubles
+    // the 8 positions as 24 doubles in three vectors, coordinate a of lane l at 3 l + a (from the
+    // first two vectors below 16, else from the third)
     const double* base = &position[first].x;
+    const __m512d first16[2] = {_mm512_loadu_pd(base), _mm512_loadu_pd(base + 8)};
+    const __m512d last8 = _mm512_loadu_pd(base + 16);
     __m256i lo[3], count[3];
     for (int a = 0; a < 3; ++a) {
-      const __m512d x = _mm512_i32gather_pd(lane3, base + a, 8);
+      const __m512i element = _mm512_add_epi64(_mm512_set_epi64(21, 18, 15, 12, 9, 6, 3, 0), _mm512_set1_epi64(a));
+      const __mmask8 fromLast = _mm512_cmpge_epi64_mask(element, _mm512_set1_epi64(16));
+      const __m512d x = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(first16[0], element, first16[1]), fromLast,
+                                                   element, last8);
       const __m512d o = _mm512_set1_pd(origin[a]), h = _mm512_set1_pd(inv[a]);
       const __m512d lowest = _mm512_mul_pd(_mm512_sub_pd(_mm512_add_pd(x, _mm512_set1_pd(points.value[a][0])), o), h);
       const __m512d floorOf = _mm512_roundscale_pd(lowest, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
