@@ -174,11 +174,13 @@ void Solver::buildUnknownMasks() {
     const Field& u = u_[c];
     unknown_[c].assign(u.data().size(), 0);
     unknownList_[c].clear();
+    unknownLineStart_[c].clear();
     if (twoD_ && c == 2) continue;
     const auto& pts = u.points();
     const int n = grid_.cells[c];
     for (int k = 0; k < pts[2]; ++k)
-      for (int j = 0; j < pts[1]; ++j)
+      for (int j = 0; j < pts[1]; ++j) {
+        unknownLineStart_[c].push_back(static_cast<std::int64_t>(unknownList_[c].size()));
         for (int i = 0; i < pts[0]; ++i) {
           const int idx[3] = {i, j, k};
           const int f = idx[c];
@@ -191,6 +193,8 @@ void Solver::buildUnknownMasks() {
           unknown_[c][id] = 1;
           unknownList_[c].push_back(static_cast<std::int64_t>(id));
         }
+      }
+    unknownLineStart_[c].push_back(static_cast<std::int64_t>(unknownList_[c].size()));
   }
 }
 

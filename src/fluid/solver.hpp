@@ -178,6 +178,13 @@ class Solver {
   std::vector<std::uint8_t> blocked_;     // per cell-field point
   std::vector<std::uint8_t> unknown_[3];  // per face point: solved by the momentum equation
   std::vector<std::int64_t> unknownList_[3];
+  std::vector<std::int64_t> unknownLineStart_[3];  // first unknownList_ entry of each grid line (+ end)
+  /// Jacobi row of one momentum unknown for the current step (momentum_team.cpp): the diagonal
+  /// with and without the no-slip closure terms and the control-volume face eps, in unknownList_ order.
+  struct JacobiRow {
+    double diag, invD, ep[3], em[3];
+  };
+  std::vector<JacobiRow> jacobiRows_[3];
   std::vector<double> krylov_[7];  // r, rhat, p, v, s, t, 1/diag
   Field precY_[3], precZ_[3];
   std::vector<double> linePartial_;  // per-line partial sums (deterministic reductions)
