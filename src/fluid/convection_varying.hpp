@@ -32,18 +32,27 @@ class VaryingConvection {
     }
   }
 
+  /// No work after a point's convection.
+  struct NoEpilogue {
+    void point(std::size_t, std::size_t, double) {}
+    void line(std::int64_t) {}
+  };
+
   /// Grid lines [lb, le) of the component (line = j + points[1] k), in order, on this thread.
-  void run(std::int64_t lb, std::int64_t le) {
+  /// after.point(f, cc, N_f) runs right after the convection N_f of each unknown point f (cell
+  /// cc above it along c), after.line(line) at the end of each line.
+  template <class After = NoEpilogue>
+  void run(std::int64_t lb, std::int64_t le, After&& after = After{}) {
     // The component as a template argument: the along / across branches of the face fluxes and
     // the stride choices are resolved at compile time (same arithmetic).
-    if (c_ == 0) runComponent<0>(lb, le);
-    else if (c_ == 1) runComponent<1>(lb, le);
-    else runComponent<2>(lb, le);
+    if (c_ == 0) runComponent<0>(lb, le, after);
+    else if (c_ == 1) runComponent<1>(lb, le, after);
+    else runComponent<2>(lb, le, after);
   }
 
  private:
-  template <int C>
-  void runComponent(std::int64_t lb, std::int64_t le) {
+  template <int C, class After>
+  void runComponent(std::int64_t lb, std::int64_t le, After& after) {
     const Field& uc = u_[C];
     const auto& pts = uc.points();
     const int nx = pts[0], ny = pts[1];
@@ -100,8 +109,11 @@ class VaryingConvection {
         double T = stress[C];
         for (int d = 0; d < DIMS; ++d)
           if (d != C) T += stress[d];
-        O[f] = N - mu_ * T;
+        const double result = N - mu_ * T;
+        O[f] = result;
+        after.point(f, cc, result);
       }
+      after.line(line);
     }
   }
 

@@ -191,10 +191,11 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
     };
     computeCellDivergence(&slab);
 #pragma omp barrier
-    computeConvection(conv_, &slab);
+    // Convection and right-hand sides in one pass; ||b||^2 per line into teamPartial_[c][0].
+    double* const bPartial[3] = {teamPartial_[0][0].data(), teamPartial_[1][0].data(), teamPartial_[2][0].data()};
+    convectAndAssemble(slab, dt, g1, g2, e1, e2, bPartial);
     for (int c = 0; c < 3; ++c) {
       const auto& pts = u_[c].points();
-      assembleMomentum(c, dt, g0, g1, g2, e1, e2, slab.lineBegin(pts), slab.lineEnd(pts));
       if (!unknownList_[c].empty())
         buildJacobiRows(u_[c], jacobiRows_[c].data(), unknownList_[c].data(), unknownLineStart_[c].data(),
                         coupling_.voidFraction, coupling_.dragCoefficient, c, mu_, timeCoeff, closure,
@@ -224,14 +225,6 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
       }
       const auto& pts = x.points();
       fillVelocityStencilGhostsSlab(x, c, bc_, slab.k0, slab.planeEnd(pts), slab.first, slab.last);
-      const double* B = rhs_[c].data().data();
-      double* partial = teamPartial_[c][0].data();
-      for (std::int64_t line = slab.lineBegin(pts); line < slab.lineEnd(pts); ++line) {
-        const std::size_t f0 = x.index(0, static_cast<int>(line % pts[1]), static_cast<int>(line / pts[1]));
-        double s = 0.0;
-        for (int i = 0; i < pts[0]; ++i) s += M[f0 + i] ? B[f0 + i] * B[f0 + i] : 0.0;
-        partial[line] = s;
-      }
     }
 #pragma omp barrier
     // Every member takes the same decisions from the same line sums (no further communication).

@@ -32,7 +32,8 @@
 
 namespace gf::fluid {
 
-struct PlaneSlab;  // fluid/loops.hpp
+struct PlaneSlab;         // fluid/loops.hpp
+struct MomentumRhsPoint;  // fluid/momentum_rhs.hpp
 
 enum class MomentumModel { A, B };
 enum class ConvectionScheme { Central, VanLeer };
@@ -110,6 +111,11 @@ class Solver {
   /// all lines, cell divergence included, threaded loop by loop.
   void computeConvection(Field out[3], const PlaneSlab* slab = nullptr);
   void computeCellDivergence(const PlaneSlab* slab);
+  /// A team member's share of computeConvection + assembleMomentum (all components) in one pass,
+  /// with |b|^2 per grid line into partial[c] (momentum_team.cpp).
+  void convectAndAssemble(const PlaneSlab& slab, double dt, double g1, double g2, double e1, double e2,
+                          double* const partial[3]);
+  MomentumRhsPoint momentumRhsPoint(int c, double dt, double g1, double g2, double e1, double e2) const;
   // momentum_team.cpp
   /// Convection, right-hand sides and Jacobi momentum solves of all components in one parallel
   /// region (threads split the z planes; few barriers) where eps varies and Jacobi applies;
