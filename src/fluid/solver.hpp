@@ -208,6 +208,9 @@ class Solver {
   std::vector<std::uint8_t> pressureFaces_[3];           // projection.cpp: 1 coefficient face, 2 corrected face
   std::vector<double> correctionCoeff_[3];               // a / (rho gamma0 eps_f/dt + K_f) per face (this step)
 
+  /// The velocity and pressure ghosts are those of project()'s full fill and the interior values
+  /// unchanged since: the next step refills only what depends on time and eps (fillAllGhosts).
+  bool ghostsFresh_ = false;
   double time_ = 0.0, dtPrev_ = 0.0, lastDt_ = 0.0;
   long long steps_ = 0;
   mutable long long healthCheckedAt_ = -1;  // steps_ at the last complete health scan
