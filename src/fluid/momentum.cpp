@@ -31,16 +31,21 @@ void cellDivergence(const Field u[3], Field& out, int dims, std::int64_t lineBeg
   const int ex = g.cells[0] + 2, ey = g.cells[1] + 2, ez = g.cells[2] + 2;
   double* D = out.data().data();
   const double invH[3] = {1.0 / g.spacing[0], 1.0 / g.spacing[1], 1.0 / g.spacing[2]};
+  const double* U[3];
+  std::ptrdiff_t su[3];
+  for (int a = 0; a < dims; ++a) {
+    U[a] = u[a].data().data();
+    su[a] = u[a].stride(a);
+  }
   forLines(static_cast<std::int64_t>(ey) * ez, lineBegin, lineEnd, [&](std::int64_t line) {
     const int j = static_cast<int>(line % ey) - 1, k = static_cast<int>(line / ey) - 1;
     const std::size_t d0 = out.index(-1, j, k);
-    for (int i = -1; i < ex - 1; ++i) {
+    const double* L[3];  // point i = -1 of the line, per component
+    for (int a = 0; a < dims; ++a) L[a] = U[a] + u[a].index(-1, j, k);
+    for (int i = 0; i < ex; ++i) {  // cell i - 1
       double dv = 0.0;
-      for (int a = 0; a < dims; ++a) {
-        const std::size_t fa = u[a].index(i, j, k);
-        dv += (u[a].data()[fa + u[a].stride(a)] - u[a].data()[fa]) * invH[a];
-      }
-      D[d0 + static_cast<std::size_t>(i + 1)] = dv;
+      for (int a = 0; a < dims; ++a) dv += (L[a][i + su[a]] - L[a][i]) * invH[a];
+      D[d0 + static_cast<std::size_t>(i)] = dv;
     }
   });
 }
