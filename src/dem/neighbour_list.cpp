@@ -267,8 +267,13 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
 void NeighbourList::countTouching(const std::vector<Vec3>& positionAtBuild, const std::vector<double>& radius,
                                   const PeriodicBox& box) {
   const std::size_t n = rows();
+  // Only a split among threads uses the counts (one thread: none, and the force loop ignores an
+  // empty touchingStart).
+  if (omp_get_max_threads() <= 1 || positionAtBuild.size() != n || radius.size() != n) {
+    touchingStart.clear();
+    return;
+  }
   touchingStart.assign(n + 1, 0);
-  if (positionAtBuild.size() != n || radius.size() != n) return;  // (no positions: an even split by the rest)
   const Vec3* x = positionAtBuild.data();
   const double* r = radius.data();
   parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t i) {
