@@ -120,7 +120,8 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   stencilsReady_ = true;
   const std::size_t n = particles.size();
   const std::size_t cells = solidFraction_.data().size();
-  auto particleVolume = [&](std::size_t p) { return force::sphereVolume(2.0 * particles.radius[p]); };
+  const double* radius = particles.radius.data();
+  auto particleVolume = [radius](std::size_t p) { return force::sphereVolume(2.0 * radius[p]); };
   volumeSums_.assign(static_cast<std::size_t>(omp_get_max_threads()), 0.0);
   auto buildAndSum = [&](int thread, std::size_t begin, std::size_t end) {
     scheme_->buildStencilRange(particles, topology_, stencils_, begin, end);
@@ -132,32 +133,25 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   // exchange of the pending forces goes with the same stencils: one deposit pass for the volume
   // and the exchange channels (each channel summed exactly as by its own deposit), kept for
   // fillFluidSources.
-  const bool implicit = settings_.exchange == ExchangeScheme::SemiImplicit;
   exchangeDeposited_ = false;
   if (exchangePending_ && previousId_.size() == beta_.size()) realignToParticles(particles);
   const bool fuse = exchangePending_ && beta_.size() == n;
   const double* volume = nullptr;
   std::size_t volumeStride = 1;
-  if (fuse && implicit) {
-    volume = depositChannels<1 + kImplicitExchangeChannels>(
-                 stencils_, cells, deposit_,
-                 [&](std::size_t p, auto& v) {
-                   v[0] = particleVolume(p);
-                   exchangeValues<true>(p, v + 1);
-                 },
-                 buildAndSum)
-                 .data();
-    volumeStride = 1 + kImplicitExchangeChannels;
-  } else if (fuse) {
-    volume = depositChannels<1 + kExplicitExchangeChannels>(
-                 stencils_, cells, deposit_,
-                 [&](std::size_t p, auto& v) {
-                   v[0] = particleVolume(p);
-                   exchangeValues<false>(p, v + 1);
-                 },
-                 buildAndSum)
-                 .data();
-    volumeStride = 1 + kExplicitExchangeChannels;
+  if (fuse) {
+    withExchangeLayout([&](auto layout) {
+      constexpr ExchangeLayout L = decltype(layout)::value;
+      const ExchangeData data = exchangeData();
+      volume = depositChannels<1 + channelsOf(L)>(
+                   stencils_, cells, deposit_,
+                   [&particleVolume, data](std::size_t p, auto& v) {
+                     v[0] = particleVolume(p);
+                     exchangeValues<L>(data, p, v + 1);
+                   },
+                   buildAndSum)
+                   .data();
+      volumeStride = 1 + channelsOf(L);
+    });
   } else {
     volume = depositChannels<1>(
                  stencils_, cells, deposit_, [&](std::size_t p, double (&v)[1]) { v[0] = particleVolume(p); },
@@ -306,8 +300,12 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       // locate the whole block first, then sum (the chains of several particles overlap)
       TrilinearSampler::Location where[kBlock];
       for (int q = 0; q < count; ++q) sampler.locate(particles.position[begin + q], where[q]);
-      for (int q = 0; q < count; ++q)
-        sampler.sampleAt<StandardChannels ? kStandardChannels : 0>(where[q], samples, channels, s[q]);
+      if constexpr (StandardChannels) {
+        static_assert(kStandardChannels == kTrilinearBlockChannels);
+        sampleTrilinearBlock(where, count, samples, s);
+      } else {
+        for (int q = 0; q < count; ++q) sampler.sampleAt<0>(where[q], samples, channels, s[q]);
+      }
     } else {
       for (int q = 0; q < count; ++q) {
         const std::size_t p = begin + q;
@@ -331,6 +329,8 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
     }
     squareRoots(slipSquared, slipNorm, count);
     for (int q = 0; q < count; ++q) re[q] = rho * slipNorm[q] * dPrimOf[q] / mu;
+    double correction[kBlock];  // f(Re, eps) of the law
+    if (w.drag) correctionsOf(law, re, eps, correction, count);
     double exchangedSquared[kBlock];
     for (int q = 0; q < count; ++q) {
       const std::size_t p = begin + q;
@@ -338,13 +338,16 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       const double d = 2.0 * particles.radius[p];
       const double dPrim = d * dPrimFactor;
       const double volume = force::sphereVolume(d);  // parcel volume = k^3 primary volumes
-      const double beta = w.drag ? k3 * particleDragCoefficient(mu, dPrim, law(re[q], eps[q])) : 0.0;
+      const double beta = w.drag ? k3 * particleDragCoefficient(mu, dPrim, correction[q]) : 0.0;
       const Vec3 fDrag = force::drag(beta, slip);
-      Vec3 exchangedOther{}, particleOnly{};
-      if (cP >= 0)
-        (modelB ? exchangedOther : particleOnly) += force::pressureGradient(volume, {s[q][cP], s[q][cP + 1], s[q][cP + 2]});
-      if (cT >= 0)
-        (modelB ? exchangedOther : particleOnly) += force::viscousStress(volume, {s[q][cT], s[q][cT + 1], s[q][cT + 2]});
+      // pressure and viscous forces: given back to the fluid in model B, on the particle only in
+      // model A (summed first, then assigned: no reference chosen at run time, which kept both
+      // vectors in memory)
+      Vec3 undisturbedFlow{};
+      if (cP >= 0) undisturbedFlow += force::pressureGradient(volume, {s[q][cP], s[q][cP + 1], s[q][cP + 2]});
+      if (cT >= 0) undisturbedFlow += force::viscousStress(volume, {s[q][cT], s[q][cT + 1], s[q][cT + 2]});
+      Vec3 exchangedOther = modelB ? undisturbedFlow : Vec3{};
+      Vec3 particleOnly = modelB ? Vec3{} : undisturbedFlow;
       if (w.buoyancy) particleOnly += volume * buoyancy;
       if (w.virtualMass) {
         const Vec3 previous = std::isnan(previousSlip_[p].x) ? slip : previousSlip_[p];
@@ -475,13 +478,35 @@ void Coupler::fillFluidSources(CouplingFields& fields) {
   exchangePending_ = exchangeDeposited_ = false;
 }
 
-template <bool Implicit>
-void Coupler::exchangeValues(std::size_t p, double* v) const {
-  if constexpr (!Implicit) {
+Coupler::ExchangeLayout Coupler::exchangeLayout() const {
+  if (settings_.exchange == ExchangeScheme::Explicit) return ExchangeLayout::Explicit;
+  // the force pass's exchangedOther: pressure and viscous forces in model B, virtual mass, lifts
+  const ForceSwitches& w = settings_.forces;
+  const bool modelB = settings_.model == ExchangeModel::B;
+  const bool other = (modelB && (w.pressureGradient || w.viscousStress)) || w.virtualMass || w.saffmanMeiLift ||
+                     w.magnusLift;
+  return other ? ExchangeLayout::Implicit : ExchangeLayout::DragOnly;
+}
+
+template <class Body>
+void Coupler::withExchangeLayout(Body&& body) const {
+  switch (exchangeLayout()) {
+    case ExchangeLayout::Explicit: body(std::integral_constant<ExchangeLayout, ExchangeLayout::Explicit>{}); break;
+    case ExchangeLayout::Implicit: body(std::integral_constant<ExchangeLayout, ExchangeLayout::Implicit>{}); break;
+    case ExchangeLayout::DragOnly: body(std::integral_constant<ExchangeLayout, ExchangeLayout::DragOnly>{}); break;
+  }
+}
+
+template <Coupler::ExchangeLayout Layout>
+void Coupler::exchangeValues(const ExchangeData& data, std::size_t p, double* v) {
+  const double* beta_ = data.beta;  // (the members' names, for the formulas below)
+  const Vec3* slip_ = data.slip;
+  const Vec3* otherExchangedForce_ = data.other;
+  if constexpr (Layout == ExchangeLayout::Explicit) {
     // explicit: every exchanged force on the fluid
     const Vec3 f = -(otherExchangedForce_[p] + force::drag(beta_[p], slip_[p]));
     v[0] = f.x, v[1] = f.y, v[2] = f.z;
-  } else {
+  } else if constexpr (Layout == ExchangeLayout::Implicit) {
     // implicit: 0-2 explicit force on the fluid, 3 beta, 4-6 beta (u_p - u_f@p)
     const Vec3 f = -otherExchangedForce_[p];
     const double b = beta_[p];
@@ -489,6 +514,13 @@ void Coupler::exchangeValues(std::size_t p, double* v) const {
     v[0] = f.x, v[1] = f.y, v[2] = f.z;
     v[3] = b;
     v[4] = -b * s.x, v[5] = -b * s.y, v[6] = -b * s.z;
+  } else {
+    // implicit, drag only: 0 beta, 1-3 beta (u_p - u_f@p); the explicit force on the fluid is
+    // zero (-0 per particle, whose deposit leaves every cell sum +0: depositExchange writes 0)
+    const double b = beta_[p];
+    const Vec3 s = slip_[p];
+    v[0] = b;
+    v[1] = -b * s.x, v[2] = -b * s.y, v[3] = -b * s.z;
   }
 }
 
@@ -500,20 +532,23 @@ void Coupler::depositExchange(CouplingFields& fields, bool implicit) {
   // the sums of computeVoidFraction's fused deposit (channel 0 the volume) or a deposit of their own
   const double* sum = nullptr;
   std::size_t stride = 0;
+  const ExchangeLayout layout = exchangeLayout();
   if (exchangeDeposited_) {
-    stride = 1 + (implicit ? kImplicitExchangeChannels : kExplicitExchangeChannels);
+    stride = 1 + channelsOf(layout);
     sum = deposit_.merged.data() + 1;
-  } else if (implicit) {
-    stride = kImplicitExchangeChannels;
-    sum = depositChannels<kImplicitExchangeChannels>(stencils_, cells, deposit_, [&](std::size_t p, auto& v) {
-            exchangeValues<true>(p, v);
-          }).data();
   } else {
-    stride = kExplicitExchangeChannels;
-    sum = depositChannels<kExplicitExchangeChannels>(stencils_, cells, deposit_, [&](std::size_t p, auto& v) {
-            exchangeValues<false>(p, v);
-          }).data();
+    withExchangeLayout([&](auto l) {
+      constexpr ExchangeLayout L = decltype(l)::value;
+      stride = channelsOf(L);
+      const ExchangeData data = exchangeData();
+      sum = depositChannels<channelsOf(L)>(stencils_, cells, deposit_, [data](std::size_t p, auto& v) {
+              exchangeValues<L>(data, p, v);
+            }).data();
+    });
   }
+  // where the explicit force, beta and beta (u_p - u_f@p) lie in a cell's sums (-1: zero)
+  const int forceChannel = layout == ExchangeLayout::DragOnly ? -1 : 0;
+  const int dragChannel = layout == ExchangeLayout::DragOnly ? 0 : 3;
   // interior cells are all written below, ghosts by fillGhosts
   if (!implicit) {
     fields.dragCoefficient.fill(0.0);
@@ -537,12 +572,12 @@ void Coupler::depositExchange(CouplingFields& fields, bool implicit) {
     const auto& run = runs[r];  // an interior row; rows in parallel (disjoint writes)
     for (std::size_t q = run[0]; q < run[0] + run[1]; ++q) {
       const double* v = &sum[q * stride];
-      for (int a = 0; a < 3; ++a) force[a][q] = v[a] * inverseCellVolume;
-      const double kv = v[3];  // sum w beta
+      for (int a = 0; a < 3; ++a) force[a][q] = forceChannel < 0 ? 0.0 : v[forceChannel + a] * inverseCellVolume;
+      const double kv = v[dragChannel];  // sum w beta
       drag[q] = kv * inverseCellVolume;
       // K u_p_avg V = sum w beta (u_p + u_c - u_f@p): the mean particle velocity corrected by the
       // interpolation defect, so that K (u_c - u_p_avg) V equals the particles' drag exactly.
-      for (int a = 0; a < 3; ++a) up[a][q] = kv > 0.0 ? uf[a][q] + v[4 + a] / kv : 0.0;
+      for (int a = 0; a < 3; ++a) up[a][q] = kv > 0.0 ? uf[a][q] + v[dragChannel + 1 + a] / kv : 0.0;
     }
   });
 }

@@ -126,10 +126,29 @@ class Coupler {
   void alignPreviousSlip(const dem::ParticleSet& particles);
   void keepSlipAsPrevious();
   void realignToParticles(const dem::ParticleSet& particles);
-  static constexpr int kImplicitExchangeChannels = 7, kExplicitExchangeChannels = 3;
+  /// What is deposited per particle for the fluid (see exchangeValues): explicit, every exchanged
+  /// force (3); implicit, the explicit part of the exchanged force (3), beta and beta (u_p - u_f@p)
+  /// (4); implicit with no exchanged force besides the drag (model A without virtual mass and
+  /// lifts, the common case), only beta and beta (u_p - u_f@p): the explicit part is zero.
+  enum class ExchangeLayout { Explicit, Implicit, DragOnly };
+  static constexpr int channelsOf(ExchangeLayout l) {
+    return l == ExchangeLayout::Explicit ? 3 : l == ExchangeLayout::Implicit ? 7 : 4;
+  }
+  ExchangeLayout exchangeLayout() const;
+  /// The per-particle exchange data of the force pass, as plain pointers (read in the deposit
+  /// loops, where the vectors' own pointers would be reloaded after every store).
+  struct ExchangeData {
+    const double* beta;
+    const Vec3* slip;
+    const Vec3* other;
+  };
+  ExchangeData exchangeData() const { return {beta_.data(), slip_.data(), otherExchangedForce_.data()}; }
   /// The exchange quantities of particle p that are deposited (see depositExchange).
-  template <bool Implicit>
-  void exchangeValues(std::size_t p, double* v) const;
+  template <ExchangeLayout Layout>
+  static void exchangeValues(const ExchangeData& data, std::size_t p, double* v);
+  /// Calls body(std::integral_constant<ExchangeLayout, L>) with the layout resolved at compile time.
+  template <class Body>
+  void withExchangeLayout(Body&& body) const;
   void depositExchange(CouplingFields& fields, bool implicit);
   void smoothExchange(CouplingFields& fields, bool implicit) const;
   void updateMomentumBalance(const CouplingFields& fields, bool implicit);

@@ -8,6 +8,9 @@
 // step once sized). Memory: threads x cells x C doubles (fine for the grids of unresolved
 // CFD-DEM; a colouring scheme would avoid it).
 #include <omp.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include <algorithm>
 #include <array>
@@ -32,6 +35,36 @@ struct DepositBuffers {
 
 inline constexpr std::int64_t kDepositPiece = 256;  // particles per prepare call
 
+/// The C values of one particle, held as channel pairs in SSE2 registers (built from the scalars,
+/// not reloaded from memory: a 16-byte load of two 8-byte stores stalls store forwarding), so that
+/// addTo adds w v to a cell's C sums two channels at a time: per lane the same multiplication and
+/// addition as the scalar target[ch] += w * v[ch] (the same bits).
+template <int C>
+struct PackedValues {
+#if defined(__SSE2__)
+  __m128d pair[C / 2];
+  double last = 0.0;  // channel C - 1 where C is odd
+  explicit PackedValues(const double (&v)[C]) {
+    for (int k = 0; k < C / 2; ++k) pair[k] = _mm_set_pd(v[2 * k + 1], v[2 * k]);
+    if constexpr (C % 2 == 1) last = v[C - 1];
+  }
+  void addTo(double* target, double w) const {
+    const __m128d w2 = _mm_set1_pd(w);
+    for (int k = 0; k < C / 2; ++k)
+      _mm_storeu_pd(target + 2 * k, _mm_add_pd(_mm_loadu_pd(target + 2 * k), _mm_mul_pd(w2, pair[k])));
+    if constexpr (C % 2 == 1) target[C - 1] += w * last;
+  }
+#else
+  double value[C];
+  explicit PackedValues(const double (&v)[C]) {
+    for (int ch = 0; ch < C; ++ch) value[ch] = v[ch];
+  }
+  void addTo(double* target, double w) const {
+    for (int ch = 0; ch < C; ++ch) target[ch] += w * value[ch];
+  }
+#endif
+};
+
 /// values(p, double (&v)[C]) writes the C values of particle p. Returns the interleaved sums over
 /// `cells` flat cells (over b.runs if set; valid until the next deposit with the same buffers).
 /// prepare(thread, begin, end) runs on the depositing thread (0-based index in the team) just
@@ -55,15 +88,19 @@ const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_
     for (std::int64_t piece = begin; piece < end; piece += kDepositPiece) {
       const std::int64_t pieceEnd = std::min(end, piece + kDepositPiece);
       prepare(thread, static_cast<std::size_t>(piece), static_cast<std::size_t>(pieceEnd));
+      // the stencil arrays as plain pointers (the vectors' own would be reloaded after every store)
+      const int* countOf = s.count.data();
+      const std::size_t* cellOf = s.cell.data();
+      const double* weightOf = s.weight.data();
+      const auto capacity = static_cast<std::size_t>(s.capacity);
       for (std::int64_t p = piece; p < pieceEnd; ++p) {
         double v[C];
         values(static_cast<std::size_t>(p), v);
-        const std::size_t base = static_cast<std::size_t>(p) * s.capacity;
-        const int count = s.count[p];
+        const PackedValues<C> packed(v);
+        const std::size_t base = static_cast<std::size_t>(p) * capacity;
+        const int count = countOf[p];
         for (int e = 0; e < count; ++e) {
-          double* target = sum + s.cell[base + e] * C;
-          const double w = s.weight[base + e];
-          for (int ch = 0; ch < C; ++ch) target[ch] += w * v[ch];
+          packed.addTo(sum + cellOf[base + e] * C, weightOf[base + e]);
         }
       }
     }

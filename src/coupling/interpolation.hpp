@@ -254,6 +254,14 @@ class TrilinearSampler {
   Axis axis_[3];
 };
 
+/// The channels of the force pass's standard layout (u, eps, grad p, div tau) at `count` located
+/// points: out[q][ch] = TrilinearSampler::sampleAt<kTrilinearBlockChannels> at where[q], bit for
+/// bit (the same products and sums per channel, several channels per vector instruction; compiled
+/// also for AVX2 and AVX-512 and picked at run time, interpolation.cpp).
+inline constexpr int kTrilinearBlockChannels = 10;
+void sampleTrilinearBlock(const TrilinearSampler::Location* where, int count, const double* buffer,
+                          double (*out)[13]);
+
 /// One-off sample of several fields at particle p (tests, diagnostics).
 template <InterpolationMode Mode, int N>
 inline void sampleAt(const GridTopology& t, const ParticleStencils& s, std::size_t p, const Vec3& x,

@@ -129,11 +129,26 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
   // it is accepted without the sweep that would only confirm it (the same iterate as before).
   double contraction = std::numeric_limits<double>::infinity();
   {
+    // min and max of eps (exact whatever the order: four independent lanes, which vectorise;
+    // std::minmax_element is one serial chain, 2 % of a bed fluid step).
     const auto& e = coupling_.voidFraction.data();
-    const auto [lo, hi] = std::minmax_element(e.begin(), e.end());
+    double lo4[4], hi4[4];
+    for (int q = 0; q < 4; ++q) lo4[q] = hi4[q] = e[0];
+    std::size_t q = 0;
+    for (; q + 4 <= e.size(); q += 4)
+      for (int l = 0; l < 4; ++l) {
+        lo4[l] = std::min(lo4[l], e[q + l]);
+        hi4[l] = std::max(hi4[l], e[q + l]);
+      }
+    for (; q < e.size(); ++q) {
+      lo4[0] = std::min(lo4[0], e[q]);
+      hi4[0] = std::max(hi4[0], e[q]);
+    }
+    const double lo = std::min(std::min(lo4[0], lo4[1]), std::min(lo4[2], lo4[3]));
+    const double hi = std::max(std::max(hi4[0], hi4[1]), std::max(hi4[2], hi4[3]));
     double wMax = 0.0;
     for (int d = 0; d < 3; ++d) wMax = std::max(wMax, mu_ / (grid_.spacing[d] * grid_.spacing[d]));
-    if (*lo > 0.0) contraction = 12.0 * wMax * std::max(1.0, *hi) / (timeCoeff * *lo);
+    if (lo > 0.0) contraction = 12.0 * wMax * std::max(1.0, hi) / (timeCoeff * lo);
   }
   constexpr int kMaxSweeps = 40;  // as solveHelmholtz's Jacobi branch; BiCGStab takes over after
   int iterations[3] = {0, 0, 0};

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include <omp.h>
 
@@ -53,30 +54,30 @@ void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool,
     callerCell_.clear();
     for (int a = 0; a < 3; ++a) F.T[a].assign(T[a].begin(), T[a].end());
   } else {
-    // Caller index of internal (i0, i1, i2): caller coordinate perm_[q] is i_q.
-    auto callerIndex = [&](const int* i, int faceAxis) {
-      int e[3];
-      for (int q = 0; q < 3; ++q) e[perm_[q]] = i[q];
+    // Caller index of internal (i0, i1, i2): caller coordinate perm_[q] is i_q, so the index is the
+    // sum over q of i_q times the caller's stride of axis perm_[q] (in the array of that face axis).
+    auto callerStrides = [&](int faceAxis) {
       const std::size_t ex = n[0] + (faceAxis == 0), ey = n[1] + (faceAxis == 1);
-      return static_cast<std::size_t>(e[0]) + ex * (static_cast<std::size_t>(e[1]) + ey * static_cast<std::size_t>(e[2]));
+      const std::size_t caller[3] = {1, ex, ex * ey};
+      return std::array<std::size_t, 3>{caller[perm_[0]], caller[perm_[1]], caller[perm_[2]]};
+    };
+    auto gather = [&](const std::array<int, 3>& pts, const std::array<std::size_t, 3>& st, auto&& body) {
+      std::size_t internal = 0;
+      for (int k = 0; k < pts[2]; ++k)
+        for (int j = 0; j < pts[1]; ++j) {
+          const std::size_t base = st[1] * static_cast<std::size_t>(j) + st[2] * static_cast<std::size_t>(k);
+          for (int i = 0; i < pts[0]; ++i) body(internal++, base + st[0] * static_cast<std::size_t>(i));
+        }
     };
     callerCell_.resize(F.cells());
-    for (int k = 0; k < F.n[2]; ++k)
-      for (int j = 0; j < F.n[1]; ++j)
-        for (int i = 0; i < F.n[0]; ++i) {
-          const int idx[3] = {i, j, k};
-          callerCell_[F.faceIndex(-1, i, j, k)] = callerIndex(idx, -1);
-        }
+    gather(F.n, callerStrides(-1), [&](std::size_t c, std::size_t e) { callerCell_[c] = e; });
     for (int q = 0; q < 3; ++q) {
       std::array<int, 3> fn = F.n;
       fn[q] += 1;
       F.T[q].resize(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2]);
-      for (int k = 0; k < fn[2]; ++k)
-        for (int j = 0; j < fn[1]; ++j)
-          for (int i = 0; i < fn[0]; ++i) {
-            const int idx[3] = {i, j, k};
-            F.T[q][F.faceIndex(q, i, j, k)] = T[perm_[q]][callerIndex(idx, perm_[q])];
-          }
+      const double* src = T[perm_[q]].data();
+      double* dst = F.T[q].data();
+      gather(fn, callerStrides(perm_[q]), [&](std::size_t c, std::size_t e) { dst[c] = src[e]; });
     }
   }
   xInternal_.assign(F.cells(), 0.0);
@@ -271,34 +272,40 @@ void MultigridPoisson::coarsen(const PoissonLevel& fine, PoissonLevel& coarse, c
     std::array<int, 3> fn = coarse.n;
     fn[a] += 1;
     coarse.T[a].assign(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2], 0.0);
+    // Rediscretisation: divide by the coarse centre distance in fine cells, (size of the block
+    // below + size above) / 2, or the adjacent block's size at a non-periodic boundary face (there
+    // the operator doubles T: half a block to the boundary). 2 everywhere for even counts; odd
+    // counts leave a last block of 1 cell. One value per coarse face position along a.
+    const int nc = coarse.n[a], nf = fine.n[a];
+    std::vector<double> distance(static_cast<std::size_t>(nc) + 1, 1.0);
+    if (f[a] == 2)
+      for (int C = 0; C <= nc; ++C) {
+        auto blockSize = [&](int I) { return std::min(2, nf - 2 * I); };
+        const int below = C > 0 ? C - 1 : (fine.periodic[a] ? nc - 1 : -1);
+        const int above = C < nc ? C : (fine.periodic[a] ? 0 : -1);
+        if (below >= 0 && above >= 0) distance[static_cast<std::size_t>(C)] = 0.5 * (blockSize(below) + blockSize(above));
+        else distance[static_cast<std::size_t>(C)] = blockSize(below >= 0 ? below : above);
+      }
+    // Fine face array of axis a: strides per axis.
+    const std::size_t fx = static_cast<std::size_t>(fine.n[0]) + (a == 0), fy = static_cast<std::size_t>(fine.n[1]) + (a == 1);
+    const std::size_t fineStride[3] = {1, fx, fx * fy};
+    const double* T = fine.T[a].data();
     parallelFor(static_cast<std::int64_t>(fn[1]) * fn[2], [&](std::int64_t line) {
       const int J = static_cast<int>(line % fn[1]), K = static_cast<int>(line / fn[1]);
+      double* out = coarse.T[a].data() + static_cast<std::size_t>(fn[0]) * static_cast<std::size_t>(line);
       for (int I = 0; I < fn[0]; ++I) {
-        int C[3] = {I, J, K};
+        const int C[3] = {I, J, K};
+        int F[3];
+        F[a] = std::min(C[a] * f[a], fine.n[a]);  // last face of an odd axis: the boundary face
+        F[b] = C[b] * f[b];
+        F[c] = C[c] * f[c];
+        // Children inside the fine grid (odd axis: one child only), summed in (db, dc) order.
+        const int nb = std::min(f[b], fine.n[b] - F[b]), ncc = std::min(f[c], fine.n[c] - F[c]);
+        const std::size_t base = F[0] * fineStride[0] + F[1] * fineStride[1] + F[2] * fineStride[2];
         double sum = 0.0;
-        for (int db = 0; db < f[b]; ++db)
-          for (int dc = 0; dc < f[c]; ++dc) {
-            int F[3];
-            F[a] = std::min(C[a] * f[a], fine.n[a]);  // last face of an odd axis: the boundary face
-            F[b] = C[b] * f[b] + db;
-            F[c] = C[c] * f[c] + dc;
-            if (F[b] >= fine.n[b] || F[c] >= fine.n[c]) continue;  // odd axis: one child only
-            sum += fine.T[a][fine.faceIndex(a, F[0], F[1], F[2])];
-          }
-        // Rediscretisation: divide by the coarse centre distance in fine cells, (size of the
-        // block below + size above) / 2, or the adjacent block's size at a non-periodic boundary
-        // face (there the operator doubles T: half a block to the boundary). 2 everywhere for
-        // even counts; odd counts leave a last block of 1 cell.
-        double distance = 1.0;
-        if (f[a] == 2) {
-          const int nc = coarse.n[a], nf = fine.n[a];
-          auto blockSize = [&](int I) { return std::min(2, nf - 2 * I); };
-          const int below = C[a] > 0 ? C[a] - 1 : (fine.periodic[a] ? nc - 1 : -1);
-          const int above = C[a] < nc ? C[a] : (fine.periodic[a] ? 0 : -1);
-          if (below >= 0 && above >= 0) distance = 0.5 * (blockSize(below) + blockSize(above));
-          else distance = blockSize(below >= 0 ? below : above);
-        }
-        coarse.T[a][coarse.faceIndex(a, I, J, K)] = sum / distance;
+        for (int db = 0; db < nb; ++db)
+          for (int dc = 0; dc < ncc; ++dc) sum += T[base + db * fineStride[b] + dc * fineStride[c]];
+        out[I] = sum / distance[static_cast<std::size_t>(C[a])];
       }
     });
   }
@@ -365,26 +372,61 @@ struct LineCoefficients {
   double X(int i) const { return CONSTANT ? cx : tx[i]; }
 };
 
-template <bool CONSTANT>
-inline void applyLineImpl(const PoissonLevel& L, const double* xv, double* y, int j, int k, const double* zeros) {
+/// Y neighbours present on a line: bit 0 south, bit 1 north. A missing one has a zero coefficient
+/// line, whose product 0 x adds nothing: the Y < 3 variants skip its two loads and two flops (a
+/// 2-cell y axis, the depth of a pseudo-2D bed, has one y neighbour per cell; a 1-cell one none).
+inline int yNeighbours(const LineStencil& st, const double* zeros) {
+  return (st.tS != zeros ? 1 : 0) | (st.tN != zeros ? 2 : 0);
+}
+
+/// S x_S + N x_N + B x_B + T x_T of cell i (the present y neighbours only, in that order).
+template <int Y, class Coefficients>
+[[gnu::always_inline]] inline double yzTerms(const Coefficients& t, const LineStencil& st, const double* x, int i) {
+  if constexpr (Y == 3) {
+    return t.S(i) * x[i + st.oS] + t.N(i) * x[i + st.oN] + t.B(i) * x[i + st.oB] + t.T(i) * x[i + st.oT];
+  } else if constexpr (Y == 1) {
+    return t.S(i) * x[i + st.oS] + t.B(i) * x[i + st.oB] + t.T(i) * x[i + st.oT];
+  } else if constexpr (Y == 2) {
+    return t.N(i) * x[i + st.oN] + t.B(i) * x[i + st.oB] + t.T(i) * x[i + st.oT];
+  } else {
+    return t.B(i) * x[i + st.oB] + t.T(i) * x[i + st.oT];
+  }
+}
+
+/// Calls fn(std::integral_constant<int, Y>) for the run-time y-neighbour set.
+template <class Fn>
+inline void dispatchY(int y, Fn&& fn) {
+  switch (y) {
+    case 3: fn(std::integral_constant<int, 3>{}); break;
+    case 2: fn(std::integral_constant<int, 2>{}); break;
+    case 1: fn(std::integral_constant<int, 1>{}); break;
+    default: fn(std::integral_constant<int, 0>{}); break;
+  }
+}
+
+template <bool CONSTANT, int Y>
+inline void applyLineImpl(const PoissonLevel& L, const double* xv, double* y, int j, int k, const LineStencil& st,
+                          const double* zeros) {
   const int nx = L.n[0], ny = L.n[1];
   const std::size_t base = static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * k);
   const double* x = xv + base;
   const double* diag = L.diag.data() + base;
-  const LineStencil st = lineStencil(L, j, k, zeros);
   const LineCoefficients<CONSTANT> t(L, st, j, k, zeros);
   const bool perX = L.periodic[0] && nx > 1;
   for (int i = 0; i < nx; ++i) {
-    const double off = t.S(i) * x[i + st.oS] + t.N(i) * x[i + st.oN] + t.B(i) * x[i + st.oB] +
-                       t.T(i) * x[i + st.oT] + (i > 0 ? t.X(i) * x[i - 1] : (perX ? t.X(i) * x[nx - 1] : 0.0)) +
+    const double off = yzTerms<Y>(t, st, x, i) + (i > 0 ? t.X(i) * x[i - 1] : (perX ? t.X(i) * x[nx - 1] : 0.0)) +
                        (i < nx - 1 ? t.X(i + 1) * x[i + 1] : (perX ? t.X(i + 1) * x[0] : 0.0));
     y[i] = diag[i] * x[i] - off;
   }
 }
 
 inline void applyLine(const PoissonLevel& L, const double* xv, double* y, int j, int k, const double* zeros) {
-  if (L.constantT) applyLineImpl<true>(L, xv, y, j, k, zeros);
-  else applyLineImpl<false>(L, xv, y, j, k, zeros);
+  const LineStencil st = lineStencil(L, j, k, zeros);
+  dispatchY(yNeighbours(st, zeros), [&](auto yc) {
+    constexpr int Y = decltype(yc)::value;
+    if (L.constantT) applyLineImpl<true, Y>(L, xv, y, j, k, st, zeros);
+    else applyLineImpl<false, Y>(L, xv, y, j, k, st, zeros);
+  });
 }
 }  // namespace
 
@@ -415,19 +457,16 @@ double MultigridPoisson::applyLevelDot(const PoissonLevel& L, const std::vector<
 }
 
 namespace {
-template <bool CONSTANT>
-void relaxLineImpl(PoissonLevel& L, int j, int k, int colour, const double* zeros) {
+template <bool CONSTANT, int Y>
+void relaxLineImpl(PoissonLevel& L, int j, int k, int colour, const LineStencil& st, const double* zeros) {
   const int nx = L.n[0], ny = L.n[1];
   const std::size_t base = static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * k);
   double* x = L.x.data() + base;
   const double* b = L.b.data() + base;
   const double* inv = L.invDiag.data() + base;
-  const LineStencil st = lineStencil(L, j, k, zeros);
   const LineCoefficients<CONSTANT> t(L, st, j, k, zeros);
   const bool perX = L.periodic[0] && nx > 1;
-  auto yz = [&](int i) {
-    return t.S(i) * x[i + st.oS] + t.N(i) * x[i + st.oN] + t.B(i) * x[i + st.oB] + t.T(i) * x[i + st.oT];
-  };
+  auto yz = [&](int i) { return yzTerms<Y>(t, st, x, i); };
   auto relaxEdge = [&](int i) {
     double s = b[i] + yz(i);
     if (i > 0) s += t.X(i) * x[i - 1];
@@ -448,8 +487,13 @@ void relaxLineImpl(PoissonLevel& L, int j, int k, int colour, const double* zero
 
 // Relaxes the cells with (i+j+k) % 2 == colour on grid line (j, k).
 void MultigridPoisson::relaxLine(PoissonLevel& L, int j, int k, int colour) const {
-  if (L.constantT) relaxLineImpl<true>(L, j, k, colour, zeros_.data());
-  else relaxLineImpl<false>(L, j, k, colour, zeros_.data());
+  const double* zeros = zeros_.data();
+  const LineStencil st = lineStencil(L, j, k, zeros);
+  dispatchY(yNeighbours(st, zeros), [&](auto yc) {
+    constexpr int Y = decltype(yc)::value;
+    if (L.constantT) relaxLineImpl<true, Y>(L, j, k, colour, st, zeros);
+    else relaxLineImpl<false, Y>(L, j, k, colour, st, zeros);
+  });
 }
 
 // One half-sweep of red-black Gauss-Seidel over the cells with (i+j+k) % 2 == colour.
@@ -520,9 +564,44 @@ void MultigridPoisson::symmetricGaussSeidel(PoissonLevel& L) const {
       for (int i = nx - 1; i >= 0; --i) relax(i, j, k);
 }
 
+namespace {
+/// Piecewise-constant prolongation of one grid line: x[i] += coarse[i / factor] (factor 1 or 2;
+/// no integer division per cell).
+inline void prolongLine(double* x, const double* coarse, int nx, int factor) {
+  if (factor == 2) {
+    int i = 0;
+    for (; i + 1 < nx; i += 2) {
+      const double c = coarse[i / 2];
+      x[i] += c;
+      x[i + 1] += c;
+    }
+    if (i < nx) x[i] += coarse[i / 2];
+  } else {
+    for (int i = 0; i < nx; ++i) x[i] += coarse[i];
+  }
+}
+
+/// The first red half-sweep of a V-cycle level, whose initial x is 0, on grid lines [lb, le): the
+/// relaxation's arithmetic with all neighbours 0, x = (b + 0) / diag on the cells of colour 0,
+/// 0 on the others, with no neighbour reads (the same values, -0 + 0 included).
+void firstHalfSweepFromZero(PoissonLevel& L, std::int64_t lb, std::int64_t le) {
+  const int nx = L.n[0], ny = L.n[1];
+  for (std::int64_t line = lb; line < le; ++line) {
+    const std::size_t base = static_cast<std::size_t>(nx) * line;
+    double* x = L.x.data() + base;
+    const double* b = L.b.data() + base;
+    const double* inv = L.invDiag.data() + base;
+    const int parity = static_cast<int>(line % ny + line / ny) & 1;  // (j + k) % 2
+    for (int i = 0; i < nx; ++i) x[i] = ((i + parity) & 1) ? 0.0 : (b[i] + 0.0) * inv[i];
+  }
+}
+}  // namespace
+
 void MultigridPoisson::vcycle(int l) {
   PoissonLevel& L = levels_[l];
-  {
+  const bool coarsest = l + 1 == static_cast<int>(levels_.size());
+  const bool redBlack = !coarsest && L.redBlackSafe;
+  if (!redBlack) {
     double* x = L.x.data();
     const auto lines = static_cast<std::int64_t>(L.n[1]) * L.n[2];
     const int nx = L.n[0];
@@ -530,7 +609,6 @@ void MultigridPoisson::vcycle(int l) {
       std::fill(x + nx * line, x + nx * (line + 1), 0.0);  // first touch by the thread that smooths it
     });
   }
-  const bool coarsest = l + 1 == static_cast<int>(levels_.size());
   if (coarsest && !coarseCholesky_.empty()) {
     solveCoarsest(L);
     return;
@@ -541,7 +619,11 @@ void MultigridPoisson::vcycle(int l) {
     for (int s = 0; s < sweeps; ++s) symmetricGaussSeidel(L);
     if (coarsest) return;
   } else {
-    for (int s = 0; s < kPreSmooth; ++s) smoothPair(L, 0);
+    // From x = 0: the first red half-sweep without neighbour reads, then black, then the other pairs.
+    parallelForAbove(static_cast<std::int64_t>(L.n[1]) * L.n[2], kLevelSerialBelow,
+                     [&](std::int64_t line) { firstHalfSweepFromZero(L, line, line + 1); });
+    smoothColour(L, 1);
+    for (int s = 1; s < kPreSmooth; ++s) smoothPair(L, 0);
   }
   PoissonLevel& C = levels_[l + 1];
   const std::array<int, 3> f = factors_[l];
@@ -580,7 +662,7 @@ void MultigridPoisson::vcycle(int l) {
     const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
     const std::size_t cbase = static_cast<std::size_t>(cx) * (j / f[1] + static_cast<std::size_t>(cy) * (k / f[2]));
     const std::size_t base = static_cast<std::size_t>(nx) * line;
-    for (int i = 0; i < nx; ++i) L.x[base + i] += C.x[cbase + i / f[0]];
+    prolongLine(L.x.data() + base, C.x.data() + cbase, nx, f[0]);
   });
   if (!L.redBlackSafe) {
     for (int s = 0; s < kPostSmooth; ++s) symmetricGaussSeidel(L);
@@ -757,9 +839,13 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
     // z = one V-cycle applied to r (vcycle(0) with kPreSmooth red-black pairs before, kPostSmooth
     // black-red pairs after).
     auto vcycle0 = [&]() {
-      std::fill(z + nx * lb, z + nx * le, 0.0);
+      // z = 0, then the first red half-sweep: only the member's own lines of r are read (nobody
+      // reads z between the previous V-cycle's last barrier and the next one).
+      firstHalfSweepFromZero(L, lb, le);
 #pragma omp barrier
-      for (int s = 0; s < kPreSmooth; ++s) {
+      halfSweep(1);
+#pragma omp barrier
+      for (int s = 1; s < kPreSmooth; ++s) {
         halfSweep(0);
 #pragma omp barrier
         halfSweep(1);
@@ -792,7 +878,7 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
         const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
         const std::size_t cbase = static_cast<std::size_t>(cx) * (j / f[1] + static_cast<std::size_t>(cy) * (k / f[2]));
         const std::size_t base = static_cast<std::size_t>(nx) * line;
-        for (int i = 0; i < nx; ++i) z[base + i] += C.x[cbase + i / f[0]];
+        prolongLine(z + base, C.x.data() + cbase, nx, f[0]);
       }
       for (int s = 0; s < kPostSmooth; ++s) {
 #pragma omp barrier

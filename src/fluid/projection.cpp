@@ -170,7 +170,32 @@ void Solver::project(double dt, double g0) {
                 : std::pair<std::int64_t, std::int64_t>{0, -1};
   };
   const bool rebuild = !uniformCoupling_ || timeCoeff != poissonKey_;
-  std::array<std::vector<double>, 3> T;
+  // Faces of the pressure coefficients (bit 1) and of the velocity correction (bit 2), per
+  // velocity point: fixed by the masks and boundary types, so evaluated once.
+  if (pressureFaces_[0].size() != u_[0].data().size())
+    for (int a = 0; a < 3; ++a) {
+      const Field& u = u_[a];
+      pressureFaces_[a].assign(u.data().size(), 0);
+      correctionCoeff_[a].assign(u.data().size(), 0.0);
+      if (a >= dims) continue;
+      const auto& pts = u.points();
+      const int n = grid_.cells[a];
+      const bool periodic = bc_.periodic(a);
+      for (int k = 0; k < pts[2]; ++k)
+        for (int j = 0; j < pts[1]; ++j)
+          for (int i = 0; i < pts[0]; ++i) {
+            const std::size_t f = u.index(i, j, k);
+            const int idx[3] = {i, j, k};
+            const int along = idx[a];
+            const bool boundary = along == 0 || along == n;
+            // coupled(): a momentum unknown, or a boundary face (periodic duplicate, pressure outlet).
+            const bool coefficient = unknown_[a][f] || (boundary && coupled(a, i, j, k));
+            // Corrected: the last face of a periodic axis duplicates face 0.
+            const bool corrected = unknown_[a][f] || (boundary && !(along == n && periodic) && coupled(a, i, j, k));
+            pressureFaces_[a][f] = static_cast<std::uint8_t>((coefficient ? 1 : 0) | (corrected ? 2 : 0));
+          }
+    }
+  std::array<std::vector<double>, 3>& T = poissonT_;
   std::array<bool, 6> dirichlet{};
   if (rebuild)
     for (int a = 0; a < 3; ++a) {
@@ -188,19 +213,21 @@ void Solver::project(double dt, double g0) {
         fn[a] += 1;
         const double areaOverH = grid_.cellVolume() / (grid_.spacing[a] * grid_.spacing[a]);
         const Field& u = u_[a];
-        const int n = grid_.cells[a];
+        const std::ptrdiff_t se = p_.stride(a);
         const auto [lb, le] = range(slab, fn);
         forLines(static_cast<std::int64_t>(fn[1]) * fn[2], lb, le, [&](std::int64_t line) {
           const int j = static_cast<int>(line % fn[1]), k = static_cast<int>(line / fn[1]);
-          const std::uint8_t* M = unknown_[a].data() + u.index(0, j, k);
+          const std::size_t f0 = u.index(0, j, k), e0 = p_.index(0, j, k);
+          const std::uint8_t* PF = pressureFaces_[a].data() + f0;
+          double* C = correctionCoeff_[a].data() + f0;
+          double* Tl = T[a].data() + fn[0] * static_cast<std::size_t>(line);
           for (int i = 0; i < fn[0]; ++i) {
-            // coupled(): a momentum unknown, or a boundary face (periodic duplicate, pressure outlet).
-            const int along = a == 0 ? i : (a == 1 ? j : k);
-            if (!M[i] && !((along == 0 || along == n) && coupled(a, i, j, k))) continue;
-            const std::size_t cc = p_.index(i, j, k);
-            const double epsF = avg(E, cc, p_.stride(a));
-            T[a][static_cast<std::size_t>(i) + fn[0] * static_cast<std::size_t>(line)] =
-                epsF * correctionCoeff(a, cc) * areaOverH;
+            if (!(PF[i] & 1)) continue;
+            const std::size_t cc = e0 + i;
+            const double epsF = avg(E, cc, se);
+            // correctionCoeff(a, cc), kept for the velocity correction below.
+            C[i] = correctionCoeff(a, cc);
+            Tl[i] = epsF * C[i] * areaOverH;
           }
         });
       }
@@ -274,7 +301,9 @@ void Solver::project(double dt, double g0) {
   stats_.pressureResidual = res.relativeResidual;
   parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
     const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
-    for (int i = 0; i < nx; ++i) phi_(i, j, k) = poissonX_[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * line];
+    double* phiLine = phi_.data().data() + phi_.index(0, j, k);
+    const double* x = poissonX_.data() + static_cast<std::size_t>(nx) * line;
+    for (int i = 0; i < nx; ++i) phiLine[i] = x[i];
   });
   fillCellGhosts(phi_, bc_, CellGhostKind::PressureIncrement);
   forOutletCells([&](const int*, std::size_t cc, std::size_t, std::ptrdiff_t inward, double phiB, int) {
@@ -289,27 +318,20 @@ void Solver::project(double dt, double g0) {
       const auto& pts = u.points();
       const std::ptrdiff_t se = p_.stride(a);
       const double invH = 1.0 / grid_.spacing[a];
-      const int n = grid_.cells[a];
-      const bool periodic = bc_.periodic(a);
       const auto [lb, le] = range(slab, pts);
       forLines(static_cast<std::int64_t>(pts[1]) * pts[2], lb, le, [&](std::int64_t line) {
         const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
         const std::size_t f0 = u.index(0, j, k), e0 = p_.index(0, j, k);
         double* U = u.data().data() + f0;
-        const std::uint8_t* M = unknown_[a].data() + f0;
-        // Faces off the momentum unknowns take part only on a boundary (pressure outlets); the
-        // last face of a periodic axis duplicates face 0.
-        auto correctedFace = [&](int i) {
-          if (M[i]) return true;
-          const int along = a == 0 ? i : (a == 1 ? j : k);
-          if (along != 0 && along != n) return false;
-          if (along == n && periodic) return false;
-          return coupled(a, i, j, k);
-        };
+        // Faces off the momentum unknowns take part only on a boundary (pressure outlets).
+        const std::uint8_t* PF = pressureFaces_[a].data() + f0;
+        // Non-uniform coupling: the coefficients were rebuilt above for this step (the same
+        // correctionCoeff(a, cc) values).
+        const double* C = correctionCoeff_[a].data() + f0;
         for (int i = 0; i < pts[0]; ++i) {
-          if (!correctedFace(i)) continue;
+          if (!(PF[i] & 2)) continue;
           const std::size_t cc = e0 + i;
-          const double coeff = uniformCoupling_ ? uniformCoeff : correctionCoeff(a, cc);
+          const double coeff = uniformCoupling_ ? uniformCoeff : C[i];
           U[i] -= coeff * (Phi[cc] - Phi[cc - se]) * invH;
         }
       });

@@ -332,7 +332,6 @@ void Solver::step(double dt) {
   lastDt_ = dt;
   time_ += dt;
   ++steps_;
-  stats_.maxDivergence = maxDivergence();
   if (scalarEnabled_) advanceScalar(dt);
 }
 

@@ -48,7 +48,8 @@ struct StepStatistics {
   int pressureIterations = 0;
   double pressureResidual = 0.0;  // relative
   int momentumIterations = 0;     // summed over components
-  double maxDivergence = 0.0;     // max |div(eps u) + d eps/dt| after projection, 1/s
+  // (max |div(eps u) + d eps/dt| after the projection: Solver::maxDivergence(), on demand -- a
+  // full pass over the cells, not made every step)
   /// correctors > 1: relative momentum residual ||b - A u|| / ||b|| of the velocity and pressure
   /// entering the last corrector (the splitting error the correctors remove); 0 otherwise.
   double momentumResidual = 0.0;
@@ -190,6 +191,9 @@ class Solver {
   bool uniformCoupling_ = true;
   bool epsOlderOnes_ = true;  // epsOlder_ is 1 everywhere (ghosts included)
   std::vector<double> poissonRhs_, poissonX_, firstIncrement_;
+  std::array<std::vector<double>, 3> poissonT_;          // face transmissibilities handed to poisson_
+  std::vector<std::uint8_t> pressureFaces_[3];           // projection.cpp: 1 coefficient face, 2 corrected face
+  std::vector<double> correctionCoeff_[3];               // a / (rho gamma0 eps_f/dt + K_f) per face (this step)
 
   double time_ = 0.0, dtPrev_ = 0.0, lastDt_ = 0.0;
   long long steps_ = 0;

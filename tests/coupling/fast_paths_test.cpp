@@ -10,8 +10,11 @@
 #include <random>
 #include <vector>
 
+#include "coupling/drag/dispatch.hpp"
+#include "coupling/drag/gidaspow.hpp"
 #include "coupling/interpolation.hpp"
 #include "coupling/loops.hpp"
+#include "coupling/void_fraction/divided.hpp"
 #include "coupling/void_fraction/void_fraction_scheme.hpp"
 #include "coupling_test_helpers.hpp"
 
@@ -86,10 +89,13 @@ TEST(FastPaths, DividedBlockStencilsAreTheCellsOfThe29SatellitePoints) {
   const std::vector<Vec3> unit = dividedUnitPoints();
   ASSERT_EQ(unit.size(), 29u);
   const auto scheme = makeScheme("divided");
+  for (bool avx512 : {true, false})  // the AVX-512 form (where the CPU has it) and the generic one
   for (const auto& periodic : kPeriodicities) {
+    allowDividedAvx512(avx512);
     const GridTopology t(g, periodic);
     ParticleStencils s;
     scheme->buildStencils(particles, t, s);
+    allowDividedAvx512(true);
     ASSERT_EQ(s.capacity, 8);  // the block path
     for (std::size_t p = 0; p < particles.size(); ++p) {
       std::map<std::size_t, int> points;
@@ -107,6 +113,104 @@ TEST(FastPaths, DividedBlockStencilsAreTheCellsOfThe29SatellitePoints) {
       }
       EXPECT_NEAR(sum, 1.0, 1e-15);
     }
+  }
+}
+
+TEST(FastPaths, DividedBlockPathGivesTheSameStencilsWithAndWithoutAvx512) {
+  // particles smaller than a cell, also outside the box (folds, wraps), radii changing along the
+  // set (the scaled points are rebuilt) and runs of equal radii (reused)
+  const CartesianGrid g = makeGrid({2, 6, 7}, {0.0075, 0.005, 0.005}, {0.0, 0.001, -0.002});
+  dem::ParticleSet particles =
+      randomParticles(3000, 0.0008, 0.0013, {-0.0225, -0.014, -0.017}, {0.0375, 0.046, 0.048}, 13);
+  for (std::size_t p = 0; p < particles.size(); p += 3) particles.radius[p] = 0.00125;
+  const auto scheme = makeScheme("divided");
+  for (const auto& periodic : kPeriodicities) {
+    const GridTopology t(g, periodic);
+    ParticleStencils vector, generic;
+    scheme->buildStencils(particles, t, vector);
+    allowDividedAvx512(false);
+    scheme->buildStencils(particles, t, generic);
+    allowDividedAvx512(true);
+    ASSERT_EQ(vector.count, generic.count);
+    for (std::size_t p = 0; p < particles.size(); ++p)
+      for (int e = 0; e < generic.count[p]; ++e) {
+        const std::size_t q = p * generic.capacity + e;
+        ASSERT_EQ(vector.cell[q], generic.cell[q]) << "particle " << p;
+        ASSERT_EQ(vector.weight[q], generic.weight[q]) << "particle " << p;
+      }
+  }
+}
+
+TEST(FastPaths, TrilinearBlockSamplingIsBitIdenticalToTheSampler) {
+  // sampleTrilinearBlock (vector registers, AVX-512 / AVX2 clones) against TrilinearSampler::sampleAt
+  const CartesianGrid g = makeGrid({3, 4, 5}, {0.01, 0.008, 0.012}, {-0.004, 0.002, 0.001});
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  constexpr int kChannels = kTrilinearBlockChannels;
+  for (const auto& periodic : kPeriodicities) {
+    const GridTopology t(g, periodic);
+    const Field layout(g);
+    std::vector<double> buffer(layout.data().size() * kChannels);
+    for (double& v : buffer) v = u(rng) * std::exp(10.0 * u(rng));
+    const TrilinearSampler sampler(t);
+    constexpr int kBlock = 32;
+    for (int block = 0; block < 60; ++block) {
+      TrilinearSampler::Location where[kBlock];
+      for (auto& l : where) {
+        Vec3 x;
+        for (int a = 0; a < 3; ++a)
+          x[a] = g.origin[a] + (0.5 + 0.5 * u(rng)) * g.cells[a] * g.spacing[a] + u(rng) * g.spacing[a];
+        sampler.locate(x, l);
+      }
+      const int count = 1 + block % kBlock;  // partial blocks too
+      double out[kBlock][13];
+      sampleTrilinearBlock(where, count, buffer.data(), out);
+      for (int q = 0; q < count; ++q) {
+        double expected[kChannels];
+        sampler.sampleAt<kChannels>(where[q], buffer.data(), kChannels, expected);
+        for (int ch = 0; ch < kChannels; ++ch) ASSERT_EQ(out[q][ch], expected[ch]) << "channel " << ch;
+      }
+    }
+  }
+}
+
+TEST(FastPaths, DragOnlyExchangeEqualsTheFullImplicitExchangeBitForBit) {
+  // Model A without virtual mass and lifts exchanges the drag only: the deposit skips the three
+  // zero channels of the explicit force. The same case with a zero virtual-mass force (C_vm = 0)
+  // takes the full 7-channel implicit layout; both must give the same fields and forces, in the
+  // time-loop order (exchange fused into the void-fraction deposit) and in the short order.
+  const CartesianGrid g = makeGrid({6, 7, 8}, {0.01, 0.01, 0.01});
+  const dem::ParticleSet base = randomParticles(6000, 0.001, 0.002, {0, 0, 0}, {0.06, 0.07, 0.08}, 21);
+  FluidFields fluid(g);
+  fluid.setVelocity(g, [](const Vec3& x) { return Vec3{std::sin(60 * x.y), 0.3 * x.x, 1.0 + std::cos(50 * x.x)}; });
+  fluid.setPressureGradient(g, [](const Vec3& x) { return Vec3{0.0, 10 * x.z, -9810.0 + 100 * x.y}; });
+  for (bool fused : {true, false}) {
+    std::vector<Field> results[2];
+    std::vector<Vec3> forces[2];
+    for (int variant = 0; variant < 2; ++variant) {
+      const std::string yaml = std::string("  drag_law: gidaspow\n") +
+                               (variant ? "  forces:\n    virtual_mass: true\n    virtual_mass_coefficient: 0\n" : "");
+      auto c = makeCoupler(yaml, g, {true, false, false});
+      dem::ParticleSet particles = base;
+      CouplingFields fields(g);
+      c->computeVoidFraction(particles, fields);
+      c->computeParticleForces(fluid.view(1.2, 1.8e-5, 2e-5), fields, particles);
+      if (fused) {
+        for (std::size_t p = 0; p < particles.size(); ++p) particles.position[p].z += 0.0007;  // "DEM"
+        c->computeVoidFraction(particles, fields);
+        c->fillFluidSources(particles, fields);
+      } else {
+        c->fillFluidSources(fields);
+      }
+      EXPECT_LT(norm(c->momentumBalanceError()), 1e-13 * c->exchangedForceScale());
+      results[variant] = {fields.forceDensity[0], fields.forceDensity[1], fields.forceDensity[2],
+                          fields.dragCoefficient, fields.particleVelocity[0], fields.particleVelocity[1],
+                          fields.particleVelocity[2], fields.voidFraction};
+      forces[variant] = particles.externalForce;
+    }
+    EXPECT_EQ(forces[0], forces[1]) << "fused " << fused;
+    for (std::size_t f = 0; f < results[0].size(); ++f)
+      EXPECT_EQ(results[0][f].data(), results[1][f].data()) << "field " << f << ", fused " << fused;
   }
 }
 
@@ -161,4 +265,56 @@ TEST(FastPaths, SumsOverRangesEqualSumsOverIndicesBitForBit) {
     EXPECT_EQ(byRange[1], byIndex[1]) << threads;
   }
   omp_set_num_threads(saved);
+}
+
+TEST(FastPaths, ViscousStressDivergenceIsTheSevenPointLaplacianBitForBit) {
+  // computeViscousStressDivergence (rows, components side by side in one vector) against the
+  // definition cell by cell: mu sum_a (u_hi - 2 u_c + u_lo) / h_a^2, the neighbour across a wall
+  // the cell itself, across a periodic boundary the wrapped cell
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const std::array<int, 3>& cells : {std::array<int, 3>{2, 5, 6}, {1, 4, 3}, {4, 3, 5}}) {
+    const CartesianGrid g = makeGrid(cells, {0.0075, 0.005, 0.004});
+    for (const auto& periodic : kPeriodicities) {
+      const GridTopology t(g, periodic);
+      Field velocity[3] = {Field(g), Field(g), Field(g)}, divTau[3] = {Field(g), Field(g), Field(g)};
+      for (auto& f : velocity)
+        for (double& v : f.data()) v = u(rng) * std::exp(5.0 * u(rng));
+      const Field* in[3] = {&velocity[0], &velocity[1], &velocity[2]};
+      const double mu = 1.8e-5;
+      computeViscousStressDivergence(t, in, mu, divTau);
+      for (int k = 0; k < cells[2]; ++k)
+        for (int j = 0; j < cells[1]; ++j)
+          for (int i = 0; i < cells[0]; ++i) {
+            const int idx[3] = {i, j, k};
+            for (int c = 0; c < 3; ++c) {
+              double lap = 0.0;
+              for (int a = 0; a < 3; ++a) {
+                int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+                lo[a] = periodic[a] ? t.mapIndex(idx[a] - 1, a) : std::max(idx[a] - 1, 0);
+                hi[a] = periodic[a] ? t.mapIndex(idx[a] + 1, a) : std::min(idx[a] + 1, cells[a] - 1);
+                const double h = g.spacing[a];
+                lap += (velocity[c](hi[0], hi[1], hi[2]) - 2.0 * velocity[c](i, j, k) + velocity[c](lo[0], lo[1], lo[2])) /
+                       (h * h);
+              }
+              ASSERT_EQ(divTau[c](i, j, k), mu * lap) << i << " " << j << " " << k << " component " << c;
+            }
+          }
+    }
+  }
+}
+
+TEST(FastPaths, GidaspowBlockEqualsTheLawValueByValue) {
+  // the force pass evaluates the law block-wise (Ergun in vector registers, Wen-Yu where eps >= 0.8)
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int n : {1, 7, 8, 9, 31, 32}) {
+    std::vector<double> re(n), eps(n), block(n);
+    for (int i = 0; i < n; ++i) {
+      re[i] = std::exp(12.0 * u(rng) - 6.0);                                          // 0.0025 .. 400
+      eps[i] = i % 4 == 0 ? 0.8 : i % 4 == 1 ? std::nextafter(0.8, 0.0) : 0.3 + 0.7 * u(rng);  // both branches, the switch
+    }
+    correctionsOf(StaticCorrection<&drag::gidaspow>{}, re.data(), eps.data(), block.data(), n);
+    for (int i = 0; i < n; ++i) ASSERT_EQ(block[i], drag::gidaspow(re[i], eps[i])) << "re " << re[i] << " eps " << eps[i];
+  }
 }

@@ -147,7 +147,7 @@ fluid:
         rateScale = std::max(rateScale, std::abs(cf.voidFraction(i, j, 0) - cf.voidFractionOld(i, j, 0)) / dt);
       }
     s.step(dt);
-    worstCell = std::max(worstCell, s.lastStep().maxDivergence);
+    worstCell = std::max(worstCell, s.maxDivergence());
     // Global balance: outflow - inflow + d/dt sum(eps V).
     double storage = 0.0, outflow = 0.0, inflow = 0.0;
     for (int j = 0; j < g.cells[1]; ++j) {

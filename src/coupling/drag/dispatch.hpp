@@ -24,6 +24,17 @@ struct VirtualCorrection {  // a law that is not a pure function (none today)
   double operator()(double re, double eps) const { return law->correction(re, eps); }
 };
 
+/// f[i] = law(re[i], eps[i]) for i in [0, n): one call per value, or the law's block form where it
+/// has one (the same values bit for bit).
+template <class Law>
+inline void correctionsOf(const Law& law, const double* re, const double* eps, double* f, int n) {
+  for (int i = 0; i < n; ++i) f[i] = law(re[i], eps[i]);
+}
+inline void correctionsOf(const StaticCorrection<&drag::gidaspow>&, const double* re, const double* eps, double* f,
+                          int n) {
+  drag::gidaspowBlock(re, eps, f, n);
+}
+
 /// Calls body(functor) with the law resolved to the cheapest functor type.
 template <class Body>
 void withDragCorrection(const DragLaw& law, Body&& body) {

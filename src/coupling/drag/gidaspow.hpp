@@ -30,6 +30,11 @@ inline double gidaspow(double re, double eps) {
   return eps < kGidaspowSwitchVoidFraction ? ergun(re, eps) : wenYu(re, eps);
 }
 
+/// f[i] = gidaspow(re[i], eps[i]) for i in [0, n), bit for bit: the Ergun branch (two divisions)
+/// for all i several at a time in vector registers (AVX-512 / AVX2 clones), then Wen-Yu one by one
+/// where eps >= 0.8 (or NaN, as gidaspow).
+void gidaspowBlock(const double* re, const double* eps, double* f, int n);
+
 /// Huilin & Gidaspow (2003) blending: w = 1/2 + atan(262.5 (phi - 0.2)) / pi,
 /// f = w Ergun + (1 - w) Wen-Yu; continuous in eps.
 inline double gidaspowBlended(double re, double eps) {

@@ -12,8 +12,13 @@
 #include <memory>
 #include <stdexcept>
 #include <vector>
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define GF_DIVIDED_AVX512 1
+#endif
 
 #include "coupling/axis_offsets.hpp"
+#include "coupling/void_fraction/divided.hpp"
 #include "coupling/void_fraction/void_fraction_scheme.hpp"
 #include "coupling/loops.hpp"
 
@@ -137,6 +142,17 @@ inline AxisSplit splitAxis(double x, const double (&ru)[kValues], double origin,
 
 using AxisOffsets = AxisOffsetTable<std::size_t>;
 
+// whether the block path may use its AVX-512 form (the CPU has it and no test switched it off)
+bool avx512Allowed = true;
+bool useAvx512() {
+#if defined(GF_DIVIDED_AVX512)
+  static const bool cpuHasIt = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx2");
+  return cpuHasIt && avx512Allowed;
+#else
+  return false;
+#endif
+}
+
 class DividedVoidFraction final : public VoidFractionScheme {
  public:
   explicit DividedVoidFraction(Params&) {}
@@ -182,6 +198,12 @@ class DividedVoidFraction final : public VoidFractionScheme {
                          std::size_t begin, std::size_t end) const override {
     if (stencils.capacity != kBlockCapacity) return;  // general path: built by beginStencils
     const BlockTables& tables = *tables_;
+#if defined(GF_DIVIDED_AVX512)
+    if (useAvx512()) {
+      addBlocksAvx512(particles, topology, tables, stencils, begin, end);
+      return;
+    }
+#endif
     ScaledPoints points;
     for (std::size_t p = begin; p < end; ++p) {
       if (!points.scaledFor(particles.radius[p])) points.scale(particles.radius[p]);
@@ -233,15 +255,9 @@ class DividedVoidFraction final : public VoidFractionScheme {
     axisOffsets[1].pair(t, sy.lo, offset[1][0], offset[1][1]);
     axisOffsets[2].pair(t, sz.lo, offset[2][0], offset[2][1]);
     // the 8 cell counts of the table, one byte each (byte b: cell bit0 x + bit1 y + bit2 z)
-    std::uint64_t counts = unit.packedCount[sx.split][sy.split][sz.split];
     // axes whose two cells map to the same cell (wall fold, one-cell periodic axis): add the upper
     // bytes onto the lower ones (branch-free, in registers: which axes fold is hard to predict)
-    constexpr std::uint64_t lowerHalf[3] = {0x00FF00FF00FF00FFull, 0x0000FFFF0000FFFFull, 0x00000000FFFFFFFFull};
-    for (int a = 0; a < 3; ++a) {
-      const std::uint64_t fold = offset[a][0] == offset[a][1] ? ~0ull : 0ull;
-      const std::uint64_t keep = lowerHalf[a] | ~fold;
-      counts = (counts & keep) + ((counts >> (8 << a)) & lowerHalf[a] & fold);
-    }
+    const std::uint64_t counts = foldCounts(unit.packedCount[sx.split][sy.split][sz.split], offset);
     // the non-empty cells in block order, branch-free (which cells are empty is hard to predict):
     // entry b goes to slot = number of non-empty cells before it (byte-wise prefix sums of the
     // non-empty flags by one multiplication); an empty cell's entry is overwritten by the next
@@ -258,9 +274,93 @@ class DividedVoidFraction final : public VoidFractionScheme {
     }
     count = static_cast<int>(inclusive >> 56);
   }
+
+  /// Folds the upper bytes of the axes whose two cells map to one cell onto the lower ones (as addBlock).
+  static std::uint64_t foldCounts(std::uint64_t counts, const std::size_t (&offset)[3][2]) {
+    constexpr std::uint64_t lowerHalf[3] = {0x00FF00FF00FF00FFull, 0x0000FFFF0000FFFFull, 0x00000000FFFFFFFFull};
+    for (int a = 0; a < 3; ++a) {
+      const std::uint64_t fold = offset[a][0] == offset[a][1] ? ~0ull : 0ull;
+      const std::uint64_t keep = lowerHalf[a] | ~fold;
+      counts = (counts & keep) + ((counts >> (8 << a)) & lowerHalf[a] & fold);
+    }
+    return counts;
+  }
+
+#if defined(GF_DIVIDED_AVX512)
+  /// addBlock for particles [begin, end) with AVX-512: per axis the 8 upper coordinates compared
+  /// with the cell face in one instruction (the same operations per coordinate as splitAxis), the
+  /// 8 cells and weights (count x (1/29), the values of weightOf) built in one register each and
+  /// the non-empty ones compressed to the front. The same stencil entries as addBlock (entries
+  /// beyond the count are zero instead of leftovers; nothing reads them).
+  __attribute__((target("avx512f,avx2,popcnt"))) static void addBlocksAvx512(
+      const dem::ParticleSet& particles, const GridTopology& t, const BlockTables& tables, ParticleStencils& stencils,
+      std::size_t begin, std::size_t end) {
+    const AxisOffsets (&axisOffsets)[3] = tables.axis;
+    ScaledPoints points;
+    __m512d upperPoints[3];  // r u_v of the 8 upper coordinates (v = 1..8) per axis
+    const double origin[3] = {t.grid.origin.x, t.grid.origin.y, t.grid.origin.z};
+    const double inv[3] = {t.inverseSpacing.x, t.inverseSpacing.y, t.inverseSpacing.z};
+    const __m512i lane = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0);
+    __mmask8 upperLanes[3];  // lanes b with bit a set take the upper cell of axis a
+    for (int a = 0; a < 3; ++a) upperLanes[a] = _mm512_test_epi64_mask(lane, _mm512_set1_epi64(1ll << a));
+    const __m512d weightPerPoint = _mm512_set1_pd(1.0 / kPoints);
+    const __m512i shift = _mm512_set1_epi64(static_cast<long long>(tables.shift));
+    const Vec3* position = particles.position.data();
+    const double* radius = particles.radius.data();
+    std::size_t* cellOut = stencils.cell.data();
+    double* weightOut = stencils.weight.data();
+    int* countOut = stencils.count.data();
+    // batches in two passes (lower cells and splits; then offsets, counts and entries): the long
+    // dependency chain of one particle overlaps with those of the next ones
+    constexpr int kBatch = 16;
+    for (std::size_t b0 = begin; b0 < end; b0 += kBatch) {
+      const int size = static_cast<int>(std::min<std::size_t>(kBatch, end - b0));
+      int lower[kBatch][3], split[kBatch][3];
+      for (int q = 0; q < size; ++q) {
+        const std::size_t p = b0 + q;
+        if (!points.scaledFor(radius[p])) {
+          points.scale(radius[p]);
+          for (int a = 0; a < 3; ++a) upperPoints[a] = _mm512_loadu_pd(points.value[a] + 1);
+        }
+        for (int a = 0; a < 3; ++a) {
+          const double xa = position[p][a];
+          const int lo = floorToInt((xa + points.value[a][0] - origin[a]) * inv[a]);
+          const __m512d scaled = _mm512_mul_pd(
+              _mm512_sub_pd(_mm512_add_pd(_mm512_set1_pd(xa), upperPoints[a]), _mm512_set1_pd(origin[a])),
+              _mm512_set1_pd(inv[a]));
+          const __mmask8 below = _mm512_cmp_pd_mask(scaled, _mm512_set1_pd(lo + 1.0), _CMP_LT_OQ);
+          lower[q][a] = lo;
+          split[q][a] = 1 + _mm_popcnt_u32(static_cast<unsigned>(below));
+        }
+      }
+      for (int q = 0; q < size; ++q) {
+        const std::size_t p = b0 + q;
+        std::size_t offset[3][2];
+        __m512i cells = shift;
+        for (int a = 0; a < 3; ++a) {
+          axisOffsets[a].pair(t, lower[q][a], offset[a][0], offset[a][1]);
+          cells = _mm512_add_epi64(cells, _mm512_mask_blend_epi64(upperLanes[a],
+                                                                  _mm512_set1_epi64(static_cast<long long>(offset[a][0])),
+                                                                  _mm512_set1_epi64(static_cast<long long>(offset[a][1]))));
+        }
+        const std::uint64_t counts = foldCounts(unit.packedCount[split[q][0]][split[q][1]][split[q][2]], offset);
+        const __m128i bytes = _mm_cvtsi64_si128(static_cast<long long>(counts));
+        const __m512i count64 = _mm512_cvtepu8_epi64(bytes);
+        const __mmask8 nonEmpty = _mm512_test_epi64_mask(count64, count64);
+        const __m512d weights = _mm512_mul_pd(_mm512_cvtepi32_pd(_mm256_cvtepu8_epi32(bytes)), weightPerPoint);
+        _mm512_storeu_si512(cellOut + p * kBlockCapacity, _mm512_maskz_compress_epi64(nonEmpty, cells));
+        _mm512_storeu_pd(weightOut + p * kBlockCapacity, _mm512_maskz_compress_pd(nonEmpty, weights));
+        countOut[p] = _mm_popcnt_u32(static_cast<unsigned>(nonEmpty));
+      }
+    }
+  }
+#endif
 };
 
 }  // namespace
+
+void allowDividedAvx512(bool allowed) { avx512Allowed = allowed; }
+
 GF_REGISTER_MODEL(VoidFractionScheme, DividedVoidFraction, "divided",
                   "satellite points: volume split into 29 equal parts at the centre and 28 points inside the sphere (CFDEM 'divided')")
 }  // namespace gf::coupling
