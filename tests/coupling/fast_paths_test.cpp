@@ -318,3 +318,20 @@ TEST(FastPaths, GidaspowBlockEqualsTheLawValueByValue) {
     for (int i = 0; i < n; ++i) ASSERT_EQ(block[i], drag::gidaspow(re[i], eps[i])) << "re " << re[i] << " eps " << eps[i];
   }
 }
+
+TEST(FastPaths, MaxRadiusIsTheLargestRadius) {
+  // eight running maxima side by side: the serial maximum whatever the position of the largest
+  for (int n : {0, 1, 7, 8, 9, 100, 1001}) {
+    dem::ParticleSet particles = n ? randomParticles(n, 0.001, 0.002, {0, 0, 0}, {0.1, 0.1, 0.1}, 31 + n) : dem::ParticleSet{};
+    for (int largest = 0; largest < std::min(n, 17); ++largest) {
+      std::vector<double> radius = particles.radius;
+      radius[largest] = 0.003;
+      dem::ParticleSet set = particles;
+      set.radius = radius;
+      double serial = 0.0;
+      for (double r : radius) serial = std::max(serial, r);
+      ASSERT_EQ(maxRadius(set), serial) << n << " " << largest;
+    }
+    if (n == 0) EXPECT_EQ(maxRadius(particles), 0.0);
+  }
+}
