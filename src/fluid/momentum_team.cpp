@@ -212,15 +212,16 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
       double* Y = precY_[c].data().data();
       const std::uint8_t* M = unknown_[c].data();
       const auto [b, e] = flatRange(x);
+      // Selections, not branches (the same values; vectorisable): the sweeps write y at the
+      // unknowns only, so its other points take u^n here.
       for (std::size_t q = b; q < e; ++q) {
         const double un = X[q];
-        if (M[q]) {
-          const double extrapolated = 2.0 * un - Uo[q];
-          X[q] = extrapolated + G[q];
-          G[q] = extrapolated;
-        } else {
-          Y[q] = un;  // the sweeps write the unknowns only
-        }
+        const bool unknown = M[q] != 0;
+        const double extrapolated = 2.0 * un - Uo[q];
+        const double g = G[q];
+        X[q] = unknown ? extrapolated + g : un;
+        G[q] = unknown ? extrapolated : g;
+        Y[q] = unknown ? Y[q] : un;
         Uo[q] = un;
       }
       const auto& pts = x.points();
