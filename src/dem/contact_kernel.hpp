@@ -3,7 +3,7 @@
 // combination (dispatchLaws picks one instantiation per call, before the loop).
 //
 // Determinism: rows are split into one contiguous block per thread (by the listed work, from the
-// lists alone: BlockSplit). A thread writes
+// lists and the positions at their build: BlockSplit). A thread writes
 // forces of its own block directly; forces on partners in a later block go to the thread's own
 // buffer, added afterwards in thread order. No atomics; bit-identical for a thread count.
 #include <omp.h>
@@ -40,30 +40,31 @@ void dispatchLaws(NormalLaw n, RollingLaw r, CohesionLaw c, F&& f) {
 }
 
 /// Work-balanced split of the rows [0, n) into one contiguous block per thread (block t:
-/// [start[t], start[t + 1])). The cost of a row is estimated from the lists alone (so that the
-/// split, like the lists, is restored by a restart): kRowCost per row (body forces, row sums,
-/// owner bookkeeping, walls gather) + 1 per listed partner (the distance test, and the contact of
-/// the touching ones) + kWallCost per wall entry. Threads 1.. also kick their block after the
-/// barrier (thread 0 kicks during its sweep), a second pass over their particles: kKickCost per
-/// row of theirs. Deterministic for a list and a thread count. The costs were fitted to the
-/// per-thread CPU samples of the contact phase of the bubbling bed on 2 threads (the row-count
-/// split gave the second thread 1.8 x the first's samples; these costs ~1.05 x).
+/// [start[t], start[t + 1])). The cost of a row is estimated from the lists and the positions at
+/// their build (all restored by a restart): kRowCost per row (body forces, row sums, kick) + 1
+/// per listed partner (the distance test) + kTouchingCost per pair touching at the build (gather,
+/// contact law, scatter) + kWallCost per wall entry. Threads 1.. also kick their block after the
+/// barrier (thread 0 kicks during its sweep): kKickCost per row of theirs. Deterministic for a
+/// list and a thread count. The costs were fitted to per-thread CPU samples of the contact phase
+/// on 2 threads, bubbling bed and settled bed (where the touching pairs are unevenly spread over
+/// the rows: the row-count split gave the second thread 1.8 x the first's samples in the bubbling
+/// bed, the first 1.15 x the second's in the settled bed).
 struct BlockSplit {
-  static constexpr double kRowCost = 4.0, kWallCost = 4.0, kKickCost = 3.0;
-  static void compute(const std::uint32_t* rowStart, const std::uint32_t* wallRowStart, std::size_t n, int team,
-                      std::vector<std::size_t>& start) {
+  static constexpr double kRowCost = 1.0, kTouchingCost = 2.5, kWallCost = 1.0, kKickCost = 1.0;
+  static void compute(const std::uint32_t* rowStart, const std::uint32_t* touchingStart,
+                      const std::uint32_t* wallRowStart, std::size_t n, int team, std::vector<std::size_t>& start) {
     start.assign(static_cast<std::size_t>(team) + 1, 0);
     start[team] = n;
     if (team <= 1 || n == 0) return;
     // cumulative cost of rows [0, i): sweep only (thread 0), and sweep + kick (threads 1..)
     auto sweep = [&](std::size_t i) {
       return kRowCost * static_cast<double>(i) + static_cast<double>(rowStart[i]) +
+             (touchingStart ? kTouchingCost * static_cast<double>(touchingStart[i]) : 0.0) +
              (wallRowStart ? kWallCost * static_cast<double>(wallRowStart[i]) : 0.0);
     };
     auto withKick = [&](std::size_t i) { return sweep(i) + kKickCost * static_cast<double>(i); };
     const double others = static_cast<double>(team - 1);
-    // end of block 0: the first row where its cost reaches the share of each other thread
-    auto firstRow = [&](auto&& reached) {
+    auto firstRow = [&](auto&& reached) {  // first row where `reached` holds (it is monotone)
       std::size_t lo = 0, hi = n;
       while (lo < hi) {
         const std::size_t mid = lo + (hi - lo) / 2;
@@ -72,6 +73,7 @@ struct BlockSplit {
       }
       return lo;
     };
+    // end of block 0: where its cost reaches the share of each of the other threads
     start[1] = firstRow([&](std::size_t i) { return sweep(i) >= (withKick(n) - withKick(i)) / others; });
     const double base = withKick(start[1]), share = (withKick(n) - base) / others;
     for (int t = 2; t < team; ++t)
@@ -87,8 +89,9 @@ struct PartnerBuffers {
   std::vector<std::uint32_t> lo, hi;  // touched range per thread (particle indices)
   std::vector<std::size_t> blockStart;
   std::size_t blockEnd(int t) const { return blockStart[t + 1]; }
-  void prepare(int threads, std::size_t n, const std::uint32_t* rowStart, const std::uint32_t* wallRowStart) {
-    BlockSplit::compute(rowStart, wallRowStart, n, threads, blockStart);
+  void prepare(int threads, std::size_t n, const std::uint32_t* rowStart, const std::uint32_t* touchingStart,
+               const std::uint32_t* wallRowStart) {
+    BlockSplit::compute(rowStart, touchingStart, wallRowStart, n, threads, blockStart);
     const std::size_t t = threads > 1 ? threads - 1 : 0;
     force.resize(t);
     torque.resize(t);
@@ -712,7 +715,8 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
     const int t = omp_get_thread_num();
     const int team = omp_get_num_threads();
 #pragma omp single
-    buffers.prepare(team, n, list.rowStart.data(), walls.primitives->empty() ? nullptr : wallList.rowStart.data());
+    buffers.prepare(team, n, list.rowStart.data(), list.touchingStart.size() == n + 1 ? list.touchingStart.data() : nullptr,
+                    walls.primitives->empty() ? nullptr : wallList.rowStart.data());
     // (implicit barrier)
     const std::size_t begin = buffers.blockStart[t], end = buffers.blockStart[t + 1];
     thread_local ContactBatch batch;

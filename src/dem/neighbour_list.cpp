@@ -264,8 +264,33 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
       carryHistory);
 }
 
+void NeighbourList::countTouching(const std::vector<Vec3>& positionAtBuild, const std::vector<double>& radius,
+                                  const PeriodicBox& box) {
+  const std::size_t n = rows();
+  // Only a split among threads uses the counts (one thread: none, and the force loop ignores an
+  // empty touchingStart).
+  if (omp_get_max_threads() <= 1 || positionAtBuild.size() != n || radius.size() != n) {
+    touchingStart.clear();
+    return;
+  }
+  touchingStart.assign(n + 1, 0);
+  const Vec3* x = positionAtBuild.data();
+  const double* r = radius.data();
+  parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+    std::uint32_t touching = 0;
+    for (std::uint32_t k = rowStart[i]; k < rowStart[i + 1]; ++k) {
+      const std::uint32_t j = partner[k];
+      const double reach = r[i] + r[j];
+      touching += normSquared(box.minimumImage(x[i] - x[j])) < reach * reach ? 1u : 0u;
+    }
+    touchingStart[i + 1] = touching;
+  });
+  for (std::size_t i = 0; i < n; ++i) touchingStart[i + 1] += touchingStart[i];
+}
+
 std::size_t NeighbourList::memoryBytes() const {
-  return rowStart.capacity() * sizeof(std::uint32_t) + partner.capacity() * sizeof(std::uint32_t) +
+  return (rowStart.capacity() + touchingStart.capacity()) * sizeof(std::uint32_t) +
+         partner.capacity() * sizeof(std::uint32_t) +
          tangentialHistory.capacity() * sizeof(Vec3) + rollingHistory.capacity() * sizeof(Vec3);
 }
 

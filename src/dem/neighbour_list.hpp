@@ -21,6 +21,10 @@ class NeighbourList {
   std::vector<std::uint32_t> partner;   // j > i
   std::vector<Vec3> tangentialHistory;  // per entry, i's view
   std::vector<Vec3> rollingHistory;     // per entry (EPSD only, else empty)
+  /// Touching pairs of rows [0, i) at the positions of the last build (size n + 1; derived, not
+  /// saved: countTouching() after build() and load(); empty on one thread). The force loop splits
+  /// its rows among threads by the work this predicts (BlockSplit).
+  std::vector<std::uint32_t> touchingStart;
 
   /// Rebuilds the list for `p`. `previousIndex[k]` is the index particle k had at the previous
   /// build (-1 for new particles); histories of pairs that persist are copied (sign flipped when
@@ -31,6 +35,11 @@ class NeighbourList {
   std::size_t rows() const { return rowStart.empty() ? 0 : rowStart.size() - 1; }
   std::size_t entries() const { return partner.size(); }
   std::size_t memoryBytes() const;
+
+  /// Fills touchingStart from the positions and radii the list was built with (a pure function of
+  /// them: a restart, which restores those positions, gets the same counts).
+  void countTouching(const std::vector<Vec3>& positionAtBuild, const std::vector<double>& radius,
+                     const PeriodicBox& box);
 
   void save(BinaryWriter& out) const;
   void load(BinaryReader& in);

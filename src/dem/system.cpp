@@ -191,6 +191,7 @@ void System::rebuild(std::vector<std::uint32_t> order, std::size_t listedRows) {
   list_.build(particles_, box_, domain_.min, domain_.max, skin_, previous, rollingHistory);
   wallList_.build(particles_, primitives_, skin_, previous, rollingHistory);
   positionAtBuild_ = particles_.position;
+  list_.countTouching(positionAtBuild_, particles_.radius, box_);
   timeAtBuild_ = time_;
   ++rebuilds_;
   // 1/m and 1/I follow the particles; unchanged when none moved in the arrays, none came or went
@@ -427,6 +428,7 @@ void System::load(BinaryReader& in) {
   list_.load(in);
   wallList_.load(in);
   positionAtBuild_ = in.getVector<Vec3>();
+  list_.countTouching(positionAtBuild_, particles_.radius, box_);
   updateInverseInertia();
   if (list_.rows() != particles_.size() || positionAtBuild_.size() != particles_.size())
     throw CheckpointError("checkpoint is corrupt: DEM lists do not match the particles");

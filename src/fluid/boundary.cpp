@@ -98,13 +98,24 @@ double inletNormalVelocity(const Boundaries& bc, int axis, int side, const Carte
   return u;
 }
 
-void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode) {
+int firstTimeDependentVelocityAxis(const Boundaries& bc) {
+  for (int a = 0; a < 3; ++a)
+    for (int s = 0; s < 2; ++s) {
+      const BoundarySide& side = bc.at(a, s);
+      if (side.type == BoundaryType::Inlet) return a;
+      if (side.type == BoundaryType::Wall && !(side.velocity[0] == 0.0 && side.velocity[1] == 0.0 && side.velocity[2] == 0.0))
+        return a;
+    }
+  return 3;
+}
+
+void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode, int firstAxis) {
   // One loop per side and condition (the condition is decided once, not per grid line).
   const CartesianGrid& grid = u.grid();
   const int g = grid.ghosts;
   double* d = u.data().data();
   const bool full = mode == GhostMode::Full;
-  for (int a = 0; a < 3; ++a) {
+  for (int a = firstAxis; a < 3; ++a) {
     const int n = grid.cells[a];
     const std::ptrdiff_t st = u.stride(a);
     if (bc.periodic(a)) {

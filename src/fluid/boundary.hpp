@@ -53,7 +53,14 @@ enum class GhostMode { Full, Homogeneous };
 double inletNormalVelocity(const Boundaries& bc, int axis, int side, const CartesianGrid& g, const Vec3& faceCentre);
 
 /// Ghosts (and prescribed boundary faces) of velocity component `c` (face field along c).
-void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode);
+/// The axes are filled in order x, y, z (a later axis overwrites the edge ghosts it shares with
+/// an earlier one); firstAxis > 0 refills only the axes >= firstAxis, for a field whose ghosts
+/// of the earlier axes are still those of a full fill of the same interior values.
+void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode, int firstAxis = 0);
+
+/// First axis with a side whose velocity ghosts depend on more than the interior velocities
+/// (inlets: time ramp, eps of superficial inlets; walls with a velocity: time ramp); 3 if none.
+int firstTimeDependentVelocityAxis(const Boundaries& bc);
 
 /// The part of fillVelocityGhosts(u, c, bc, Full) that the 7-point momentum stencil reads at the
 /// momentum unknowns: the first ghost layer of the interior grid lines (no edge or corner ghosts,

@@ -7,6 +7,7 @@
 
 #include "fluid/convection_varying.hpp"
 #include "fluid/loops.hpp"
+#include "fluid/momentum_rhs.hpp"
 #include "fluid/schemes.hpp"
 #include "fluid/solver.hpp"
 #include "fluid/staggered_eps.hpp"
@@ -30,16 +31,21 @@ void cellDivergence(const Field u[3], Field& out, int dims, std::int64_t lineBeg
   const int ex = g.cells[0] + 2, ey = g.cells[1] + 2, ez = g.cells[2] + 2;
   double* D = out.data().data();
   const double invH[3] = {1.0 / g.spacing[0], 1.0 / g.spacing[1], 1.0 / g.spacing[2]};
+  const double* U[3];
+  std::ptrdiff_t su[3];
+  for (int a = 0; a < dims; ++a) {
+    U[a] = u[a].data().data();
+    su[a] = u[a].stride(a);
+  }
   forLines(static_cast<std::int64_t>(ey) * ez, lineBegin, lineEnd, [&](std::int64_t line) {
     const int j = static_cast<int>(line % ey) - 1, k = static_cast<int>(line / ey) - 1;
     const std::size_t d0 = out.index(-1, j, k);
-    for (int i = -1; i < ex - 1; ++i) {
+    const double* L[3];  // point i = -1 of the line, per component
+    for (int a = 0; a < dims; ++a) L[a] = U[a] + u[a].index(-1, j, k);
+    for (int i = 0; i < ex; ++i) {  // cell i - 1
       double dv = 0.0;
-      for (int a = 0; a < dims; ++a) {
-        const std::size_t fa = u[a].index(i, j, k);
-        dv += (u[a].data()[fa + u[a].stride(a)] - u[a].data()[fa]) * invH[a];
-      }
-      D[d0 + static_cast<std::size_t>(i + 1)] = dv;
+      for (int a = 0; a < dims; ++a) dv += (L[a][i + su[a]] - L[a][i]) * invH[a];
+      D[d0 + static_cast<std::size_t>(i)] = dv;
     }
   });
 }
@@ -328,6 +334,32 @@ void Solver::computeConvection(Field out[3], const PlaneSlab* slab) {
   else byDims(std::false_type{}, std::false_type{});
 }
 
+MomentumRhsPoint Solver::momentumRhsPoint(int c, double dt, double g1, double g2, double e1, double e2) const {
+  MomentumRhsPoint r;
+  r.U = u_[c].data().data();
+  r.Uo = uOld_[c].data().data();
+  r.No = convOld_[c].data().data();
+  r.P = p_.data().data();
+  r.E = coupling_.voidFraction.data().data();
+  r.En = coupling_.voidFractionOld.data().data();
+  r.Enm = epsOlder_.data().data();
+  r.F = coupling_.forceDensity[c].data().data();
+  r.K = coupling_.dragCoefficient.data().data();
+  r.Up = coupling_.particleVelocity[c].data().data();
+  r.se = p_.stride(c);
+  r.invH = 1.0 / grid_.spacing[c];
+  r.rdt = rho_ / dt;
+  r.g1 = g1;
+  r.g2 = g2;
+  r.e1 = e1;
+  r.e2 = e2;
+  r.rho = rho_;
+  r.gc = gravity_[c];
+  r.drive = (driveMode_ != DrivingMode::None && driveAxis_ == c) ? drive_ : 0.0;
+  r.modelA = model_ == MomentumModel::A;
+  return r;
+}
+
 void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2, double e1, double e2,
                               std::int64_t lineBegin, std::int64_t lineEnd) {
   const Field& uc = u_[c];
@@ -337,12 +369,7 @@ void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2,
   const double* N = conv_[c].data().data();
   const double* No = convOld_[c].data().data();
   const double* P = p_.data().data();
-  const double* E = coupling_.voidFraction.data().data();
-  const double* En = coupling_.voidFractionOld.data().data();
-  const double* Enm = epsOlder_.data().data();
   const double* F = coupling_.forceDensity[c].data().data();
-  const double* K = coupling_.dragCoefficient.data().data();
-  const double* Up = coupling_.particleVelocity[c].data().data();
   double* R = rhs_[c].data().data();
   const auto& mask = unknown_[c];
   const std::ptrdiff_t se = p_.stride(c);
@@ -350,7 +377,6 @@ void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2,
   const double rdt = rho_ / dt;
   const double gc = gravity_[c];
   const double drive = (driveMode_ != DrivingMode::None && driveAxis_ == c) ? drive_ : 0.0;
-  const bool modelA = model_ == MomentumModel::A;
   if (uniformCoupling_) {
     // eps = eps_old = eps_older = 1 and K = 0 (ghosts included): the general expression below with
     // those values (same arithmetic; the drag term K u_p is an exact zero), without reading them.
@@ -371,23 +397,14 @@ void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2,
     });
     return;
   }
+  const MomentumRhsPoint rhs = momentumRhsPoint(c, dt, g1, g2, e1, e2);
   forLines(static_cast<std::int64_t>(pts[1]) * pts[2], lineBegin, lineEnd, [&](std::int64_t line) {
     const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
     const std::size_t f0 = uc.index(0, j, k), e0 = p_.index(0, j, k);
     for (int i = 0; i < pts[0]; ++i) {
       const std::size_t f = f0 + i;
       if (!mask[f]) continue;
-      const std::size_t cc = e0 + i, cm = cc - se;
-      const double epsF = 0.5 * (E[cc] + E[cm]);
-      const double epsN = 0.5 * (En[cc] + En[cm]);
-      const double epsNm = 0.5 * (Enm[cc] + Enm[cm]);
-      const double a = modelA ? epsF : 1.0;
-      double r = rdt * (g1 * epsN * U[f] - g2 * epsNm * Uo[f]);
-      r -= e1 * N[f] - e2 * No[f];
-      r -= a * (P[cc] - P[cm]) * invH;
-      r += epsF * rho_ * gc + a * drive;
-      r += 0.5 * (F[cc] + F[cm]) + 0.5 * (K[cc] * Up[cc] + K[cm] * Up[cm]);
-      R[f] = r;
+      R[f] = rhs(f, e0 + i, N[f]);
     }
   });
   (void)g0;
@@ -670,6 +687,40 @@ double Solver::correctMomentum(double dt, double g0) {
     stats_.momentumIterations += solveHelmholtz(c, dt, g0, false);
   }
   return bb > 0.0 ? std::sqrt(rr / bb) : 0.0;
+}
+
+/// Epilogue of the fused convection pass of a team member (predictMomentumTeam): b at every unknown
+/// point right after its convection N^n (as assembleMomentum), and |b|^2 per grid line (the sum of
+/// the team's initial-residual norm, in line order).
+struct AssembleEpilogue {
+  MomentumRhsPoint rhs;
+  double* R;
+  double* partial;
+  double acc = 0.0;
+  [[gnu::always_inline]] void point(std::size_t f, std::size_t cc, double Nf) {
+    const double r = rhs(f, cc, Nf);
+    R[f] = r;
+    acc += r * r;
+  }
+  [[gnu::always_inline]] void line(std::int64_t line) {
+    partial[line] = acc;
+    acc = 0.0;
+  }
+};
+
+void Solver::convectAndAssemble(const PlaneSlab& slab, double dt, double g1, double g2, double e1, double e2,
+                                double* const partial[3]) {
+  const bool tvd = scheme_ == ConvectionScheme::VanLeer;
+  for (int c = 0; c < 3; ++c) {
+    const auto& pts = u_[c].points();
+    AssembleEpilogue after{momentumRhsPoint(c, dt, g1, g2, e1, e2), rhs_[c].data().data(), partial[c]};
+    if (tvd)
+      VaryingConvection<true, 3>(u_, coupling_.voidFraction, unknown_[c], conv_[c], c, rho_, mu_, cellDivergence_)
+          .run(slab.lineBegin(pts), slab.lineEnd(pts), after);
+    else
+      VaryingConvection<false, 3>(u_, coupling_.voidFraction, unknown_[c], conv_[c], c, rho_, mu_, cellDivergence_)
+          .run(slab.lineBegin(pts), slab.lineEnd(pts), after);
+  }
 }
 
 }  // namespace gf::fluid

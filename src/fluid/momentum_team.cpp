@@ -31,45 +31,39 @@ struct ClosureRows {
   int n[3] = {1, 1, 1};
 };
 
-/// One Jacobi sweep of (rho gamma0 eps_f/dt + K_f) x - div(mu eps grad x) = b on lines [lb, le)
-/// of component c: y = x + D^-1 (b - A x) at the unknown faces, y = x at the other points of the
-/// lines. A x and D in the arithmetic of helmholtzKernel<false, 3> and solveHelmholtz's inverse
-/// diagonal. partial[line] = |b - A x|^2 of the line.
-void jacobiSweepVariable(const Field& x, Field& y, const double* B, const std::vector<std::uint8_t>& mask,
-                         const Field& eps, const Field& K, int c, double mu, double timeCoeff,
-                         const ClosureRows& closure, std::int64_t lb, std::int64_t le, double* partial) {
+/// Jacobi rows (diagonal, inverse closed diagonal, control-volume face eps) of the unknowns on
+/// lines [lb, le) of component c, for the operator (rho gamma0 eps_f/dt + K_f) x - div(mu eps grad x)
+/// in the arithmetic of helmholtzKernel<false, 3> and solveHelmholtz's inverse diagonal. They
+/// depend only on eps and K: computed once per step, not in each of the sweeps.
+template <class Row>
+void buildJacobiRows(const Field& x, Row* rows, const std::int64_t* list, const std::int64_t* lineStart,
+                     const Field& eps, const Field& K, int c, double mu, double timeCoeff, const ClosureRows& closure,
+                     std::int64_t lb, std::int64_t le) {
   const CartesianGrid& g = x.grid();
   const auto& pts = x.points();
-  const double* X = x.data().data();
-  double* Y = y.data().data();
   const double* E = eps.data().data();
   const double* Kd = K.data().data();
-  std::ptrdiff_t sx[3], se[3];
+  std::ptrdiff_t se[3];
   double w[3];
   for (int d = 0; d < 3; ++d) {
-    sx[d] = x.stride(d);
     se[d] = eps.stride(d);
     w[d] = mu / (g.spacing[d] * g.spacing[d]);
   }
   for (std::int64_t line = lb; line < le; ++line) {
     const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
-    const std::size_t f0 = x.index(0, j, k), e0 = eps.index(0, j, k);
-    double acc = 0.0;
-    for (int i = 0; i < pts[0]; ++i) {
-      const std::size_t f = f0 + i;
-      if (!mask[f]) {
-        Y[f] = X[f];
-        continue;
-      }
+    const auto f0 = static_cast<std::int64_t>(x.index(0, j, k));
+    const std::size_t e0 = eps.index(0, j, k);
+    for (std::int64_t q = lineStart[line]; q < lineStart[line + 1]; ++q) {
+      const int i = static_cast<int>(list[q] - f0);
+      Row& row = rows[q];
       const std::size_t cc = e0 + i, cm = cc - se[c];
       double diag = timeCoeff * 0.5 * (E[cc] + E[cm]) + 0.5 * (Kd[cc] + Kd[cm]);
-      double off = 0.0;
       for (int d = 0; d < 3; ++d) {
         const auto [ep, em] = controlVolumeFaceEps(E, cc, cm, se[d], d == c);
+        row.ep[d] = ep;
+        row.em[d] = em;
         diag += w[d] * (ep + em);
-        off += w[d] * (ep * X[f + sx[d]] + em * X[f - sx[d]]);
       }
-      const double r = B[f] - (diag * X[f] - off);
       double D = diag;
       const int idx[3] = {i, j, k};
       for (int d = 0; d < 3; ++d) {
@@ -78,7 +72,36 @@ void jacobiSweepVariable(const Field& x, Field& y, const double* B, const std::v
         if (closure.lo[d] && idx[d] == 0) D += 2.0 * w[d] * epsF;
         if (closure.hi[d] && idx[d] == closure.n[d] - 1) D += 2.0 * w[d] * epsF;
       }
-      Y[f] = X[f] + r * (1.0 / D);
+      row.diag = diag;
+      row.invD = 1.0 / D;
+    }
+  }
+}
+
+/// One Jacobi sweep y = x + D^-1 (b - A x) at the unknowns of lines [lb, le) of component c
+/// (rows from buildJacobiRows; y equals x at the other points of the lines: copied once per step).
+/// partial[line] = |b - A x|^2 of the line.
+template <class Row>
+void jacobiSweepRows(const Field& x, Field& y, const double* B, const Row* rows, const std::int64_t* list,
+                     const std::int64_t* lineStart, double mu, std::int64_t lb, std::int64_t le, double* partial) {
+  const CartesianGrid& g = x.grid();
+  const double* X = x.data().data();
+  double* Y = y.data().data();
+  std::ptrdiff_t sx[3];
+  double w[3];
+  for (int d = 0; d < 3; ++d) {
+    sx[d] = x.stride(d);
+    w[d] = mu / (g.spacing[d] * g.spacing[d]);
+  }
+  for (std::int64_t line = lb; line < le; ++line) {
+    double acc = 0.0;
+    for (std::int64_t q = lineStart[line]; q < lineStart[line + 1]; ++q) {
+      const auto f = static_cast<std::size_t>(list[q]);
+      const Row& row = rows[q];
+      double off = 0.0;
+      for (int d = 0; d < 3; ++d) off += w[d] * (row.ep[d] * X[f + sx[d]] + row.em[d] * X[f - sx[d]]);
+      const double r = B[f] - (row.diag * X[f] - off);
+      Y[f] = X[f] + r * row.invD;
       acc += r * r;
     }
     partial[line] = acc;
@@ -111,6 +134,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
     const auto& pts = u_[c].points();
     const auto lines = static_cast<std::size_t>(pts[1]) * pts[2];
     for (auto& v : teamPartial_[c]) v.assign(lines, 0.0);
+    jacobiRows_[c].resize(unknownList_[c].size());
   }
   ClosureRows closure;
   for (int d = 0; d < 3; ++d) {
@@ -167,10 +191,15 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
     };
     computeCellDivergence(&slab);
 #pragma omp barrier
-    computeConvection(conv_, &slab);
+    // Convection and right-hand sides in one pass; ||b||^2 per line into teamPartial_[c][0].
+    double* const bPartial[3] = {teamPartial_[0][0].data(), teamPartial_[1][0].data(), teamPartial_[2][0].data()};
+    convectAndAssemble(slab, dt, g1, g2, e1, e2, bPartial);
     for (int c = 0; c < 3; ++c) {
       const auto& pts = u_[c].points();
-      assembleMomentum(c, dt, g0, g1, g2, e1, e2, slab.lineBegin(pts), slab.lineEnd(pts));
+      if (!unknownList_[c].empty())
+        buildJacobiRows(u_[c], jacobiRows_[c].data(), unknownList_[c].data(), unknownLineStart_[c].data(),
+                        coupling_.voidFraction, coupling_.dragCoefficient, c, mu_, timeCoeff, closure,
+                        slab.lineBegin(pts), slab.lineEnd(pts));
     }
 #pragma omp barrier  // convection read u^n of the neighbouring planes
     for (int c = 0; c < 3; ++c) {
@@ -180,27 +209,23 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
       double* X = x.data().data();
       double* Uo = uOld_[c].data().data();
       double* G = guessError_[c].data().data();
+      double* Y = precY_[c].data().data();
       const std::uint8_t* M = unknown_[c].data();
       const auto [b, e] = flatRange(x);
+      // Selections, not branches (the same values; vectorisable): the sweeps write y at the
+      // unknowns only, so its other points take u^n here.
       for (std::size_t q = b; q < e; ++q) {
         const double un = X[q];
-        if (M[q]) {
-          const double extrapolated = 2.0 * un - Uo[q];
-          X[q] = extrapolated + G[q];
-          G[q] = extrapolated;
-        }
+        const bool unknown = M[q] != 0;
+        const double extrapolated = 2.0 * un - Uo[q];
+        const double g = G[q];
+        X[q] = unknown ? extrapolated + g : un;
+        G[q] = unknown ? extrapolated : g;
+        Y[q] = unknown ? Y[q] : un;
         Uo[q] = un;
       }
       const auto& pts = x.points();
       fillVelocityStencilGhostsSlab(x, c, bc_, slab.k0, slab.planeEnd(pts), slab.first, slab.last);
-      const double* B = rhs_[c].data().data();
-      double* partial = teamPartial_[c][0].data();
-      for (std::int64_t line = slab.lineBegin(pts); line < slab.lineEnd(pts); ++line) {
-        const std::size_t f0 = x.index(0, static_cast<int>(line % pts[1]), static_cast<int>(line / pts[1]));
-        double s = 0.0;
-        for (int i = 0; i < pts[0]; ++i) s += M[f0 + i] ? B[f0 + i] * B[f0 + i] : 0.0;
-        partial[line] = s;
-      }
     }
 #pragma omp barrier
     // Every member takes the same decisions from the same line sums (no further communication).
@@ -221,9 +246,9 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
         Field& x = inYLocal[c] ? precY_[c] : u_[c];
         Field& y = inYLocal[c] ? u_[c] : precY_[c];
         const auto& pts = x.points();
-        jacobiSweepVariable(x, y, rhs_[c].data().data(), unknown_[c], coupling_.voidFraction,
-                            coupling_.dragCoefficient, c, mu_, timeCoeff, closure, slab.lineBegin(pts),
-                            slab.lineEnd(pts), teamPartial_[c][parity].data());
+        jacobiSweepRows(x, y, rhs_[c].data().data(), jacobiRows_[c].data(), unknownList_[c].data(),
+                        unknownLineStart_[c].data(), mu_, slab.lineBegin(pts), slab.lineEnd(pts),
+                        teamPartial_[c][parity].data());
         fillVelocityStencilGhostsSlab(y, c, bc_, slab.k0, slab.planeEnd(pts), slab.first, slab.last);
       }
 #pragma omp barrier

@@ -350,6 +350,7 @@ void Solver::project(double dt, double g0) {
   });
   for (int a = 0; a < dims; ++a) fillVelocityGhosts(u_[a], a, bc_, GhostMode::Full);
   fillCellGhosts(p_, bc_, CellGhostKind::Pressure);
+  ghostsFresh_ = dims == 3;  // (2D: w is not refilled here)
 }
 
 void Solver::controlFlowRate(double dt, double g0) {

@@ -32,7 +32,8 @@
 
 namespace gf::fluid {
 
-struct PlaneSlab;  // fluid/loops.hpp
+struct PlaneSlab;         // fluid/loops.hpp
+struct MomentumRhsPoint;  // fluid/momentum_rhs.hpp
 
 enum class MomentumModel { A, B };
 enum class ConvectionScheme { Central, VanLeer };
@@ -110,6 +111,11 @@ class Solver {
   /// all lines, cell divergence included, threaded loop by loop.
   void computeConvection(Field out[3], const PlaneSlab* slab = nullptr);
   void computeCellDivergence(const PlaneSlab* slab);
+  /// A team member's share of computeConvection + assembleMomentum (all components) in one pass,
+  /// with |b|^2 per grid line into partial[c] (momentum_team.cpp).
+  void convectAndAssemble(const PlaneSlab& slab, double dt, double g1, double g2, double e1, double e2,
+                          double* const partial[3]);
+  MomentumRhsPoint momentumRhsPoint(int c, double dt, double g1, double g2, double e1, double e2) const;
   // momentum_team.cpp
   /// Convection, right-hand sides and Jacobi momentum solves of all components in one parallel
   /// region (threads split the z planes; few barriers) where eps varies and Jacobi applies;
@@ -178,6 +184,13 @@ class Solver {
   std::vector<std::uint8_t> blocked_;     // per cell-field point
   std::vector<std::uint8_t> unknown_[3];  // per face point: solved by the momentum equation
   std::vector<std::int64_t> unknownList_[3];
+  std::vector<std::int64_t> unknownLineStart_[3];  // first unknownList_ entry of each grid line (+ end)
+  /// Jacobi row of one momentum unknown for the current step (momentum_team.cpp): the diagonal
+  /// with and without the no-slip closure terms and the control-volume face eps, in unknownList_ order.
+  struct JacobiRow {
+    double diag, invD, ep[3], em[3];
+  };
+  std::vector<JacobiRow> jacobiRows_[3];
   std::vector<double> krylov_[7];  // r, rhat, p, v, s, t, 1/diag
   Field precY_[3], precZ_[3];
   std::vector<double> linePartial_;  // per-line partial sums (deterministic reductions)
@@ -195,6 +208,9 @@ class Solver {
   std::vector<std::uint8_t> pressureFaces_[3];           // projection.cpp: 1 coefficient face, 2 corrected face
   std::vector<double> correctionCoeff_[3];               // a / (rho gamma0 eps_f/dt + K_f) per face (this step)
 
+  /// The velocity and pressure ghosts are those of project()'s full fill and the interior values
+  /// unchanged since: the next step refills only what depends on time and eps (fillAllGhosts).
+  bool ghostsFresh_ = false;
   double time_ = 0.0, dtPrev_ = 0.0, lastDt_ = 0.0;
   long long steps_ = 0;
   mutable long long healthCheckedAt_ = -1;  // steps_ at the last complete health scan
