@@ -285,7 +285,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   const bool modelB = settings_.model == ExchangeModel::B;
   const double rho = fluid.density, mu = fluid.viscosity;
   const double epsFloor = std::max(settings_.minVoidFraction, 1e-6);
-  const int channels = StandardChannels ? kStandardChannels : sampleChannels_;
+  [[maybe_unused]] const int channels = StandardChannels ? kStandardChannels : sampleChannels_;
   const int cP = StandardChannels ? 4 : gradPChannel_, cT = StandardChannels ? 7 : divTauChannel_,
             cW = StandardChannels ? -1 : vorticityChannel_;
   const double* samples = samples_.data();

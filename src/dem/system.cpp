@@ -229,13 +229,9 @@ namespace {
 // The two largest values of a set (order-independent, so the OpenMP reduction is deterministic).
 struct LargestTwo {
   double first = 0.0, second = 0.0;
-  void add(double value) {
-    if (value > first) {
-      second = first;
-      first = value;
-    } else if (value > second) {
-      second = value;
-    }
+  void add(double value) {  // branch-free: the new second is the larger of the old second and
+    second = std::max(second, std::min(first, value));  // the smaller of (old first, value)
+    first = std::max(first, value);
   }
   void merge(const LargestTwo& other) {
     add(other.first);

@@ -402,6 +402,8 @@ TEST(FastPaths, MaxRadiusIsTheLargestRadius) {
       for (double r : radius) serial = std::max(serial, r);
       ASSERT_EQ(maxRadius(set), serial) << n << " " << largest;
     }
-    if (n == 0) EXPECT_EQ(maxRadius(particles), 0.0);
+    if (n == 0) {
+      EXPECT_EQ(maxRadius(particles), 0.0);
+    }
   }
 }
