@@ -117,6 +117,19 @@ TEST(FastPaths, DividedBlockStencilsAreTheCellsOfThe29SatellitePoints) {
   }
 }
 
+namespace {
+// Stencils of the AVX-512 and the generic divided paths: same counts, cells and weights, bit for bit.
+void expectSameStencils(const ParticleStencils& vector, const ParticleStencils& generic) {
+  ASSERT_EQ(vector.count, generic.count);
+  for (std::size_t p = 0; p < generic.count.size(); ++p)
+    for (int e = 0; e < generic.count[p]; ++e) {
+      const std::size_t q = p * generic.capacity + e;
+      ASSERT_EQ(vector.cell[q], generic.cell[q]) << "particle " << p;
+      ASSERT_EQ(vector.weight[q], generic.weight[q]) << "particle " << p;
+    }
+}
+}  // namespace
+
 TEST(FastPaths, DividedBlockPathGivesTheSameStencilsWithAndWithoutAvx512) {
   // particles smaller than a cell, also outside the box (folds, wraps), radii changing along the
   // set (the scaled points are rebuilt) and runs of equal radii (reused)
@@ -132,13 +145,7 @@ TEST(FastPaths, DividedBlockPathGivesTheSameStencilsWithAndWithoutAvx512) {
     allowDividedAvx512(false);
     scheme->buildStencils(particles, t, generic);
     allowDividedAvx512(true);
-    ASSERT_EQ(vector.count, generic.count);
-    for (std::size_t p = 0; p < particles.size(); ++p)
-      for (int e = 0; e < generic.count[p]; ++e) {
-        const std::size_t q = p * generic.capacity + e;
-        ASSERT_EQ(vector.cell[q], generic.cell[q]) << "particle " << p;
-        ASSERT_EQ(vector.weight[q], generic.weight[q]) << "particle " << p;
-      }
+    expectSameStencils(vector, generic);
   }
 }
 
@@ -162,13 +169,7 @@ TEST(FastPaths, DividedGroupsOfEightEqualRadiiGiveTheSameStencilsAsTheGenericPat
     scheme->buildStencils(particles, t, generic);
     allowDividedAvx512(true);
     ASSERT_EQ(vector.capacity, 8);
-    ASSERT_EQ(vector.count, generic.count);
-    for (std::size_t p = 0; p < particles.size(); ++p)
-      for (int e = 0; e < generic.count[p]; ++e) {
-        const std::size_t q = p * generic.capacity + e;
-        ASSERT_EQ(vector.cell[q], generic.cell[q]) << "particle " << p;
-        ASSERT_EQ(vector.weight[q], generic.weight[q]) << "particle " << p;
-      }
+    expectSameStencils(vector, generic);
   }
 }
 
