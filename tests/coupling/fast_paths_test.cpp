@@ -118,15 +118,27 @@ TEST(FastPaths, DividedBlockStencilsAreTheCellsOfThe29SatellitePoints) {
 }
 
 namespace {
-// Stencils of the AVX-512 and the generic divided paths: same counts, cells and weights, bit for bit.
-void expectSameStencils(const ParticleStencils& vector, const ParticleStencils& generic) {
-  ASSERT_EQ(vector.count, generic.count);
-  for (std::size_t p = 0; p < generic.count.size(); ++p)
-    for (int e = 0; e < generic.count[p]; ++e) {
-      const std::size_t q = p * generic.capacity + e;
-      ASSERT_EQ(vector.cell[q], generic.cell[q]) << "particle " << p;
-      ASSERT_EQ(vector.weight[q], generic.weight[q]) << "particle " << p;
-    }
+// Stencils of the AVX-512 and the generic divided paths (each periodicity): same counts, cells and
+// weights, bit for bit (and the given stencil capacity, where one is given).
+void expectDividedPathsAgree(const dem::ParticleSet& particles, const CartesianGrid& g, int expectedCapacity = 0) {
+  const auto scheme = makeScheme("divided");
+  for (const auto& periodic : kPeriodicities) {
+    const GridTopology t(g, periodic);
+    ParticleStencils vector, generic;
+    scheme->buildStencils(particles, t, vector);
+    allowDividedAvx512(false);
+    scheme->buildStencils(particles, t, generic);
+    allowDividedAvx512(true);
+    ASSERT_EQ(vector.capacity, generic.capacity);
+    if (expectedCapacity > 0) ASSERT_EQ(vector.capacity, expectedCapacity);
+    ASSERT_EQ(vector.count, generic.count);
+    for (std::size_t p = 0; p < generic.count.size(); ++p)
+      for (int e = 0; e < generic.count[p]; ++e) {
+        const std::size_t q = p * generic.capacity + e;
+        ASSERT_EQ(vector.cell[q], generic.cell[q]) << "particle " << p;
+        ASSERT_EQ(vector.weight[q], generic.weight[q]) << "particle " << p;
+      }
+  }
 }
 }  // namespace
 
@@ -137,16 +149,7 @@ TEST(FastPaths, DividedBlockPathGivesTheSameStencilsWithAndWithoutAvx512) {
   dem::ParticleSet particles =
       randomParticles(3000, 0.0008, 0.0013, {-0.0225, -0.014, -0.017}, {0.0375, 0.046, 0.048}, 13);
   for (std::size_t p = 0; p < particles.size(); p += 3) particles.radius[p] = 0.00125;
-  const auto scheme = makeScheme("divided");
-  for (const auto& periodic : kPeriodicities) {
-    const GridTopology t(g, periodic);
-    ParticleStencils vector, generic;
-    scheme->buildStencils(particles, t, vector);
-    allowDividedAvx512(false);
-    scheme->buildStencils(particles, t, generic);
-    allowDividedAvx512(true);
-    expectSameStencils(vector, generic);
-  }
+  expectDividedPathsAgree(particles, g);
 }
 
 TEST(FastPaths, DividedGroupsOfEightEqualRadiiGiveTheSameStencilsAsTheGenericPath) {
@@ -160,17 +163,7 @@ TEST(FastPaths, DividedGroupsOfEightEqualRadiiGiveTheSameStencilsAsTheGenericPat
   for (std::size_t p = 0; p < particles.size(); ++p) particles.radius[p] = 0.00125;
   for (std::size_t p = 37; p < particles.size(); p += 101) particles.radius[p] = 0.001;
   for (std::size_t p = 500; p < particles.size(); p += 613) particles.position[p].z = 0.06;
-  const auto scheme = makeScheme("divided");
-  for (const auto& periodic : kPeriodicities) {
-    const GridTopology t(g, periodic);
-    ParticleStencils vector, generic;
-    scheme->buildStencils(particles, t, vector);
-    allowDividedAvx512(false);
-    scheme->buildStencils(particles, t, generic);
-    allowDividedAvx512(true);
-    ASSERT_EQ(vector.capacity, 8);
-    expectSameStencils(vector, generic);
-  }
+  expectDividedPathsAgree(particles, g, 8);
 }
 
 namespace {
