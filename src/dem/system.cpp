@@ -247,7 +247,7 @@ void System::step(double dt) {
   LargestTwo displacement2;  // squared displacements since the last list build
   {
     // Velocity Verlet (translation and rotation of spheres): half kick with old forces, drift;
-    // the largest displacement since the last list build comes with the drift.
+    // the two largest displacements since the last list build come with the drift.
     ScopedPhase timer(timers_, Phase::Integration);
     const bool tracked = positionAtBuild_.size() == p.size();
     const double halfDt = 0.5 * dt;

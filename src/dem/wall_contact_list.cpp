@@ -34,7 +34,7 @@ void WallContactList::build(const ParticleSet& p, const std::vector<WallPrimitiv
         particle.resize(m);
       },
       [&](std::size_t i) {  // history carried over by (particle, primitive)
-        for (std::uint32_t k = rowStart[i]; k < rowStart[i + 1]; ++k) particle[k] = static_cast<std::uint32_t>(i);
+        assignRowParticle(i);
         const std::int64_t oi = i < previousIndex.size() ? previousIndex[i] : -1;
         if (oi < 0 || oi >= oldRows) return;
         for (std::uint32_t k = rowStart[i]; k < rowStart[i + 1]; ++k)
@@ -67,8 +67,7 @@ void WallContactList::load(BinaryReader& in) {
       (!rowStart.empty() && rowStart.back() != primitive.size()))
     throw CheckpointError("checkpoint is corrupt: DEM wall contact arrays do not match");
   particle.resize(primitive.size());
-  for (std::size_t i = 0; i + 1 < rowStart.size(); ++i)
-    for (std::uint32_t k = rowStart[i]; k < rowStart[i + 1]; ++k) particle[k] = static_cast<std::uint32_t>(i);
+  for (std::size_t i = 0; i + 1 < rowStart.size(); ++i) assignRowParticle(i);
 }
 
 }  // namespace gf::dem

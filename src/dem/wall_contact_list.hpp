@@ -21,6 +21,11 @@ class WallContactList {
   std::vector<Vec3> point;               // contact point, last evaluation, m
   std::vector<std::uint32_t> particle;   // particle (row) of each entry; derived from rowStart, not saved
 
+  /// Sets `particle` of the entries of row i (from rowStart).
+  void assignRowParticle(std::size_t i) {
+    for (std::uint32_t k = rowStart[i]; k < rowStart[i + 1]; ++k) particle[k] = static_cast<std::uint32_t>(i);
+  }
+
   void build(const ParticleSet& p, const std::vector<WallPrimitive>& primitives, double skin,
              const std::vector<std::int64_t>& previousIndex, bool withRollingHistory);
   std::size_t entries() const { return primitive.size(); }
