@@ -7,6 +7,8 @@
 // one). The tuner times both and keeps the faster, probing the other now and then, less often
 // while the probes confirm the choice. Only the speed depends on it.
 #include <algorithm>
+#include <cstdlib>
+#include <cstring>
 
 #include <omp.h>
 
@@ -17,6 +19,7 @@ class TeamTuner {
   /// Team size for the next call: 1 or `team` (the largest useful size).
   int pick(int team) {
     if (team <= 1) return 1;
+    if (const int forced = forcedChoice(); forced != 0) return forced > 0 ? team : 1;
     ++calls_;
     // Warm-up: alternate until both have kWarmup samples.
     if (samples_[0] < kWarmup || samples_[1] < kWarmup) return (calls_ & 1) ? team : 1;
@@ -42,6 +45,17 @@ class TeamTuner {
     }
   }
   static double now() { return omp_get_wtime(); }
+  /// Environment override for measurements (profiles of the team on a busy machine, where the
+  /// tuner would pick one thread): GF_FLUID_TEAM=team (always the team), serial (always one
+  /// thread); unset or anything else: tuned. Only the speed depends on it.
+  static int forcedChoice() {
+    static const int forced = [] {
+      const char* v = std::getenv("GF_FLUID_TEAM");
+      if (!v) return 0;
+      return std::strcmp(v, "team") == 0 ? 1 : (std::strcmp(v, "serial") == 0 ? -1 : 0);
+    }();
+    return forced;
+  }
 
  private:
   static constexpr int kWarmup = 4;
