@@ -14,9 +14,10 @@ constexpr const char* kSideNames[6] = {"x_min", "x_max", "y_min", "y_max", "z_mi
 /// included: coord[b] is the line's index along the two other axes b (coord[axis] = 0), base the
 /// flat index of point 0 on the line. Lines run with the lower of the other axes innermost (x for
 /// the y and z lines: neighbouring memory); they are independent (each writes only its own ghost
-/// points), threaded for large faces.
+/// points), threaded for large faces. The x and y lines are restricted to the z planes of
+/// `planes` (all planes by default).
 template <class Body>
-void forEachLine(const Field& f, int axis, Body&& body) {
+void forEachLine(const Field& f, int axis, const GhostPlanes& planes, Body&& body) {
   const int g = f.grid().ghosts;
   const int lo = axis == 0 ? 1 : 0, hi = axis == 2 ? 1 : 2;
   const auto& pts = f.points();
@@ -32,11 +33,15 @@ void forEachLine(const Field& f, int axis, Body&& body) {
       body(static_cast<const int*>(coord), b + static_cast<std::size_t>(p * sLo));
     }
   };
-  if (static_cast<std::int64_t>(nLo) * nHi < kSerialBelow || serialLoops()) {
-    for (int q = 0; q < nHi; ++q) row(q);
+  // Rows q (ghost-shifted index along hi): z planes [kBegin, kEnd) plus the ghost planes of the
+  // flagged z sides for the x and y lines; all rows for the z lines.
+  const int qBegin = hi == 2 ? planes.kBegin + (planes.lowZ ? 0 : g) : 0;
+  const int qEnd = hi == 2 ? (planes.kEnd < 0 ? pts[2] : planes.kEnd) + g + (planes.highZ ? g : 0) : nHi;
+  if (!planes.threaded || static_cast<std::int64_t>(nLo) * nHi < kSerialBelow || serialLoops()) {
+    for (int q = qBegin; q < qEnd; ++q) row(q);
   } else {
 #pragma omp parallel for schedule(static)
-    for (int q = 0; q < nHi; ++q) row(q);
+    for (int q = qBegin; q < qEnd; ++q) row(q);
   }
 }
 
@@ -110,6 +115,11 @@ int firstTimeDependentVelocityAxis(const Boundaries& bc) {
 }
 
 void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode, int firstAxis) {
+  fillVelocityGhostsPlanes(u, c, bc, mode, GhostPlanes{}, firstAxis);
+}
+
+void fillVelocityGhostsPlanes(Field& u, int c, const Boundaries& bc, GhostMode mode, const GhostPlanes& planes,
+                              int firstAxis) {
   // One loop per side and condition (the condition is decided once, not per grid line).
   const CartesianGrid& grid = u.grid();
   const int g = grid.ghosts;
@@ -118,9 +128,10 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode, i
   for (int a = firstAxis; a < 3; ++a) {
     const int n = grid.cells[a];
     const std::ptrdiff_t st = u.stride(a);
+    if (a == 2 && !planes.lowZ && !planes.highZ) break;
     if (bc.periodic(a)) {
       if (c == a) {
-        forEachLine(u, a, [&](const int*, std::size_t base) {
+        forEachLine(u, a, planes, [&](const int*, std::size_t base) {
           d[base + n * st] = d[base];
           for (int m = 1; m <= g; ++m) {
             d[base - m * st] = d[base + (n - m) * st];
@@ -128,7 +139,7 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode, i
           }
         });
       } else {
-        forEachLine(u, a, [&](const int*, std::size_t base) {
+        forEachLine(u, a, planes, [&](const int*, std::size_t base) {
           for (int m = 1; m <= g; ++m) {
             d[base - m * st] = d[base + (n - m) * st];
             d[base + (n - 1 + m) * st] = d[base + (m - 1) * st];
@@ -138,6 +149,7 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode, i
       continue;
     }
     for (int s = 0; s < 2; ++s) {
+      if (a == 2 && !(s == 0 ? planes.lowZ : planes.highZ)) continue;
       const BoundarySide& side = bc.at(a, s);
       const std::ptrdiff_t in = s == 0 ? st : -st;  // one point inwards
       if (c == a) {
@@ -146,7 +158,7 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode, i
         switch (side.type) {
           case BoundaryType::Wall:
           case BoundaryType::Slip:
-            forEachLine(u, a, [&](const int*, std::size_t base) {
+            forEachLine(u, a, planes, [&](const int*, std::size_t base) {
               double* l = d + base + face;
               l[0] = 0.0;
               for (int m = 1; m <= g; ++m) l[-m * in] = -l[m * in];
@@ -155,7 +167,7 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode, i
           case BoundaryType::Inlet: {
             const Field* eps = side.superficial ? bc.voidFraction : nullptr;
             const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
-            forEachLine(u, a, [&](const int* coord, std::size_t base) {
+            forEachLine(u, a, planes, [&](const int* coord, std::size_t base) {
               double value = 0.0;
               if (full) {
                 Vec3 x;
@@ -182,7 +194,7 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode, i
             break;
           }
           default:  // outlets: the boundary face is set by the solver; ghosts copy it
-            forEachLine(u, a, [&](const int*, std::size_t base) {
+            forEachLine(u, a, planes, [&](const int*, std::size_t base) {
               double* l = d + base + face;
               if (!full) l[0] = 0.0;
               for (int m = 1; m <= g; ++m) l[-m * in] = l[0];
@@ -198,13 +210,13 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode, i
             const double uw = full ? side.velocity[c] * rampFactor(side, bc.time) : 0.0;
             // Quadratic through wall value, rows 0 and 1: exact for parabolic profiles.
             if (n >= 2)
-              forEachLine(u, a, [&](const int*, std::size_t base) {
+              forEachLine(u, a, planes, [&](const int*, std::size_t base) {
                 double* l = d + base + row0;
                 l[-in] = (8.0 * uw - 6.0 * l[0] + l[in]) / 3.0;
                 l[-2 * in] = 2.0 * uw - l[in];
               });
             else
-              forEachLine(u, a, [&](const int*, std::size_t base) {
+              forEachLine(u, a, planes, [&](const int*, std::size_t base) {
                 double* l = d + base + row0;
                 l[-in] = 2.0 * uw - l[0];
                 l[-2 * in] = l[-in];
@@ -212,13 +224,13 @@ void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode, i
             break;
           }
           case BoundaryType::Slip:
-            forEachLine(u, a, [&](const int*, std::size_t base) {
+            forEachLine(u, a, planes, [&](const int*, std::size_t base) {
               double* l = d + base + row0;
               for (int m = 1; m <= g; ++m) l[-m * in] = l[(n >= m ? m - 1 : 0) * in];
             });
             break;
           default:
-            forEachLine(u, a, [&](const int*, std::size_t base) {
+            forEachLine(u, a, planes, [&](const int*, std::size_t base) {
               double* l = d + base + row0;
               for (int m = 1; m <= g; ++m) l[-m * in] = l[0];
             });
@@ -314,14 +326,19 @@ void fillVelocityStencilGhostsSlab(Field& u, int c, const Boundaries& bc, int kB
 }
 
 void fillCellGhosts(Field& f, const Boundaries& bc, CellGhostKind kind) {
+  fillCellGhostsPlanes(f, bc, kind, GhostPlanes{});
+}
+
+void fillCellGhostsPlanes(Field& f, const Boundaries& bc, CellGhostKind kind, const GhostPlanes& planes) {
   const CartesianGrid& grid = f.grid();
   const int g = grid.ghosts;
   double* d = f.data().data();
   for (int a = 0; a < 3; ++a) {
     const int n = grid.cells[a];
     const std::ptrdiff_t st = f.stride(a);
+    if (a == 2 && !planes.lowZ && !planes.highZ) break;
     if (bc.periodic(a)) {
-      forEachLine(f, a, [&](const int*, std::size_t base) {
+      forEachLine(f, a, planes, [&](const int*, std::size_t base) {
         for (int m = 1; m <= g; ++m) {
           d[base - m * st] = d[base + (((n - m) % n + n) % n) * st];
           d[base + (n - 1 + m) * st] = d[base + ((m - 1) % n) * st];
@@ -331,6 +348,7 @@ void fillCellGhosts(Field& f, const Boundaries& bc, CellGhostKind kind) {
     }
     if (kind == CellGhostKind::PeriodicOnly) continue;
     for (int s = 0; s < 2; ++s) {
+      if (a == 2 && !(s == 0 ? planes.lowZ : planes.highZ)) continue;
       const BoundarySide& side = bc.at(a, s);
       bool dirichlet = false;
       double value = 0.0;
@@ -345,12 +363,12 @@ void fillCellGhosts(Field& f, const Boundaries& bc, CellGhostKind kind) {
       }
       const std::ptrdiff_t row0 = s == 0 ? 0 : (n - 1) * st, in = s == 0 ? st : -st;
       if (dirichlet)
-        forEachLine(f, a, [&](const int*, std::size_t base) {
+        forEachLine(f, a, planes, [&](const int*, std::size_t base) {
           double* l = d + base + row0;
           for (int m = 1; m <= g; ++m) l[-m * in] = 2.0 * value - l[std::min(m - 1, n - 1) * in];
         });
       else
-        forEachLine(f, a, [&](const int*, std::size_t base) {
+        forEachLine(f, a, planes, [&](const int*, std::size_t base) {
           double* l = d + base + row0;
           for (int m = 1; m <= g; ++m) l[-m * in] = l[std::min(m - 1, n - 1) * in];
         });

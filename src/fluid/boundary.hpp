@@ -49,6 +49,19 @@ struct Boundaries {
 /// homogeneous part of the condition, used for increments inside Krylov solvers).
 enum class GhostMode { Full, Homogeneous };
 
+/// The part of a field's ghost fill done by one member of a thread team that owns the z planes
+/// kBegin <= k < kEnd of the field (kEnd < 0: all): the x and y ghosts of those planes, and the z
+/// ghosts of the min / max side where lowZ / highZ (with the x and y ghosts of those ghost planes).
+/// The member owning lowZ / highZ must own the first / last `ghosts` planes (the z ghosts are
+/// filled from them after its own x and y ghosts), and z must not be periodic unless one member
+/// owns everything. Every point gets the value of the whole fill (the same order per point).
+/// threaded: may start an OpenMP team for large faces (false inside a team).
+struct GhostPlanes {
+  int kBegin = 0, kEnd = -1;
+  bool lowZ = true, highZ = true;
+  bool threaded = true;
+};
+
 /// Normal velocity at an inlet face point (profile evaluated at the face centre).
 double inletNormalVelocity(const Boundaries& bc, int axis, int side, const CartesianGrid& g, const Vec3& faceCentre);
 
@@ -57,6 +70,9 @@ double inletNormalVelocity(const Boundaries& bc, int axis, int side, const Carte
 /// an earlier one); firstAxis > 0 refills only the axes >= firstAxis, for a field whose ghosts
 /// of the earlier axes are still those of a full fill of the same interior values.
 void fillVelocityGhosts(Field& u, int c, const Boundaries& bc, GhostMode mode, int firstAxis = 0);
+/// fillVelocityGhosts on the planes of one team member (GhostPlanes).
+void fillVelocityGhostsPlanes(Field& u, int c, const Boundaries& bc, GhostMode mode, const GhostPlanes& planes,
+                              int firstAxis = 0);
 
 /// First axis with a side whose velocity ghosts depend on more than the interior velocities
 /// (inlets: time ramp, eps of superficial inlets; walls with a velocity: time ramp); 3 if none.
@@ -81,5 +97,7 @@ void fillVelocityStencilGhostsSlab(Field& u, int c, const Boundaries& bc, int kB
 /// their non-periodic ghosts are never used).
 enum class CellGhostKind { ZeroGradient, Pressure, PressureIncrement, Scalar, PeriodicOnly };
 void fillCellGhosts(Field& f, const Boundaries& bc, CellGhostKind kind);
+/// fillCellGhosts on the planes of one team member (GhostPlanes).
+void fillCellGhostsPlanes(Field& f, const Boundaries& bc, CellGhostKind kind, const GhostPlanes& planes);
 
 }  // namespace gf::fluid

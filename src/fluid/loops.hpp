@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/parallel.hpp"
+#include "fluid/boundary.hpp"
 #include "fluid/team_tuner.hpp"
 
 namespace gf::fluid {
@@ -48,6 +49,10 @@ struct PlaneSlab {
     return static_cast<std::int64_t>(last ? points[2] : k1) * points[1];
   }
   int planeEnd(const std::array<int, 3>& points) const { return last ? points[2] : k1; }
+  /// The member's share of a ghost fill of a field with these interior points (fluid/boundary.hpp).
+  GhostPlanes ghostPlanes(const std::array<int, 3>& points) const {
+    return GhostPlanes{k0, planeEnd(points), first, last, false};
+  }
   /// The slab of the calling member of a parallel region started with num_threads(team)
   /// if (team > 1): member t of the team actually delivered gets planes [planes t/m, planes (t+1)/m).
   static PlaneSlab ofCallingMember(int planes, int team) {

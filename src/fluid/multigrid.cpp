@@ -41,48 +41,44 @@ void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool,
   for (int a = 1; a < 3; ++a)
     if (n[a] > n[longest]) longest = a;
   if (longest != 0) perm_ = {longest, 0, longest == 1 ? 2 : 1};
-  PoissonLevel& F = levels_[0];
+  PoissonLevel& fine = levels_[0];
   std::array<bool, 6> dir = dirichlet;
   for (int q = 0; q < 3; ++q) {
-    F.n[q] = n[perm_[q]];
-    F.periodic[q] = periodic[perm_[q]];
+    fine.n[q] = n[perm_[q]];
+    fine.periodic[q] = periodic[perm_[q]];
     dir[2 * q] = dirichlet[2 * perm_[q]];
     dir[2 * q + 1] = dirichlet[2 * perm_[q] + 1];
   }
   dirichlet_ = dir;
+  // Caller index of internal (i0, i1, i2): caller coordinate perm_[q] is i_q, so the index is the
+  // sum over q of i_q times the caller's stride of axis perm_[q] (in the array of that face axis).
+  auto callerStrides = [&](int faceAxis) {
+    const std::size_t ex = n[0] + (faceAxis == 0), ey = n[1] + (faceAxis == 1);
+    const std::size_t caller[3] = {1, ex, ex * ey};
+    return std::array<std::size_t, 3>{caller[perm_[0]], caller[perm_[1]], caller[perm_[2]]};
+  };
+  // body(internal, caller) for the points of internal planes [k0, k1) of an array of pts points.
+  auto gather = [&](const std::array<int, 3>& pts, const std::array<std::size_t, 3>& st, int k0, int k1, auto&& body) {
+    std::size_t internal = static_cast<std::size_t>(k0) * pts[0] * pts[1];
+    for (int k = k0; k < k1; ++k)
+      for (int j = 0; j < pts[1]; ++j) {
+        const std::size_t base = st[1] * static_cast<std::size_t>(j) + st[2] * static_cast<std::size_t>(k);
+        for (int i = 0; i < pts[0]; ++i) body(internal++, base + st[0] * static_cast<std::size_t>(i));
+      }
+  };
   if (longest == 0) {
     callerCell_.clear();
-    for (int a = 0; a < 3; ++a) F.T[a].assign(T[a].begin(), T[a].end());
-  } else {
-    // Caller index of internal (i0, i1, i2): caller coordinate perm_[q] is i_q, so the index is the
-    // sum over q of i_q times the caller's stride of axis perm_[q] (in the array of that face axis).
-    auto callerStrides = [&](int faceAxis) {
-      const std::size_t ex = n[0] + (faceAxis == 0), ey = n[1] + (faceAxis == 1);
-      const std::size_t caller[3] = {1, ex, ex * ey};
-      return std::array<std::size_t, 3>{caller[perm_[0]], caller[perm_[1]], caller[perm_[2]]};
-    };
-    auto gather = [&](const std::array<int, 3>& pts, const std::array<std::size_t, 3>& st, auto&& body) {
-      std::size_t internal = 0;
-      for (int k = 0; k < pts[2]; ++k)
-        for (int j = 0; j < pts[1]; ++j) {
-          const std::size_t base = st[1] * static_cast<std::size_t>(j) + st[2] * static_cast<std::size_t>(k);
-          for (int i = 0; i < pts[0]; ++i) body(internal++, base + st[0] * static_cast<std::size_t>(i));
-        }
-    };
-    callerCell_.resize(F.cells());
-    gather(F.n, callerStrides(-1), [&](std::size_t c, std::size_t e) { callerCell_[c] = e; });
-    for (int q = 0; q < 3; ++q) {
-      std::array<int, 3> fn = F.n;
-      fn[q] += 1;
-      F.T[q].resize(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2]);
-      const double* src = T[perm_[q]].data();
-      double* dst = F.T[q].data();
-      gather(fn, callerStrides(perm_[q]), [&](std::size_t c, std::size_t e) { dst[c] = src[e]; });
-    }
+  } else if (callerCell_.size() != fine.cells() || callerN_ != n) {  // depends on the grid only
+    callerCell_.resize(fine.cells());
+    gather(fine.n, callerStrides(-1), 0, fine.n[2], [&](std::size_t c, std::size_t e) { callerCell_[c] = e; });
   }
-  xInternal_.assign(F.cells(), 0.0);
-  bInternal_.assign(F.cells(), 0.0);
-  buildDiagonal(levels_[0], dirichlet_);
+  callerN_ = n;
+  // Level shapes first (they depend on the grid only), then the coefficients.
+  for (int q = 0; q < 3; ++q) {
+    std::array<int, 3> fn = fine.n;
+    fn[q] += 1;
+    fine.T[q].resize(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2]);  // every face copied below
+  }
   std::size_t count = 1;
   while (levels_[count - 1].cells() > kCoarsestCells) {
     // Coarsen by 2 every axis with more than 1 cell (odd counts: the last coarse cell covers one
@@ -99,25 +95,102 @@ void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool,
     }
     if (!any) break;
     if (levels_.size() <= count) levels_.emplace_back();
-    coarsen(levels_[count - 1], levels_[count], f);
-    buildDiagonal(levels_[count], dirichlet_);
+    coarsenShape(levels_[count - 1], levels_[count], f);
     factors_.push_back(f);
     ++count;
   }
   levels_.resize(count);
+  PoissonLevel& F = levels_[0];  // (levels_ may have grown)
+  // Work arrays: every entry is written before it is read (solve, vcycle), so they are only
+  // sized (a setup per step on the same grid writes nothing here).
   for (auto& L : levels_) {
-    L.x.assign(L.cells(), 0.0);
-    L.b.assign(L.cells(), 0.0);
+    allocateDiagonal(L);
+    L.x.resize(L.cells());
+    L.b.resize(L.cells());
+  }
+  const std::size_t N = F.cells();
+  for (auto* v : {&xInternal_, &bInternal_, &r_, &z_, &p_, &q_}) v->resize(N);
+  // The fine coefficients (copied into the internal axis order), the fine diagonal, level 1's
+  // coefficients and diagonal: split by planes on a small grid's team (setupTeam_ times it
+  // against one thread), one value per thread and entry: the same values for any team size.
+  const bool twoLevels = count >= 2;
+  int team = 1;
+  if (twoLevels && gf::threadCount() > 1 && static_cast<std::int64_t>(N) < kSerialCellsBelow) {
+    const int maxTeam = static_cast<int>(std::min<std::int64_t>(
+        {gf::threadCount(), F.n[2], levels_[1].n[2], std::max<std::int64_t>(1, static_cast<std::int64_t>(N) / kTeamCellsPerThread)}));
+    team = setupTeam_.pick(maxTeam);
+  }
+  const double started = TeamTuner::now();
+  const bool threaded = team == 1 && !serialLoops();  // one thread: loops may still start teams (large grids)
+  auto member = [&](int t, int members) {
+    auto planes = [&](int nz, int extra) {  // [k0, k1) of nz planes (+ extra face plane for the last)
+      return std::pair<int, int>{nz * t / members, nz * (t + 1) / members + (t == members - 1 ? extra : 0)};
+    };
+    for (int q = 0; q < 3; ++q) {
+      const auto [k0, k1] = planes(F.n[2], q == 2 ? 1 : 0);
+      std::array<int, 3> fn = F.n;
+      fn[q] += 1;
+      const double* src = T[perm_[q]].data();
+      double* dst = F.T[q].data();
+      if (longest == 0) {
+        const std::size_t plane = static_cast<std::size_t>(fn[0]) * fn[1];
+        std::copy(src + plane * k0, src + plane * k1, dst + plane * k0);
+      } else {
+        gather(fn, callerStrides(perm_[q]), k0, k1, [&](std::size_t c, std::size_t e) { dst[c] = src[e]; });
+      }
+    }
+#pragma omp barrier
+    {
+      const auto [k0, k1] = planes(F.n[2], 0);
+      const auto lineBegin = static_cast<std::int64_t>(F.n[1]) * k0, lineEnd = static_cast<std::int64_t>(F.n[1]) * k1;
+      if (threaded) {
+        parallelFor(lineEnd - lineBegin, [&](std::int64_t l) { diagonalLines(F, dirichlet_, lineBegin + l, lineBegin + l + 1); });
+      } else {
+        diagonalLines(F, dirichlet_, lineBegin, lineEnd);
+      }
+    }
+    if (twoLevels) {
+      PoissonLevel& C = levels_[1];
+      for (int a = 0; a < 3; ++a) {
+        const auto [k0, k1] = planes(C.n[2], a == 2 ? 1 : 0);
+        std::array<int, 3> fn = C.n;
+        fn[a] += 1;
+        const auto lineBegin = static_cast<std::int64_t>(fn[1]) * k0, lineEnd = static_cast<std::int64_t>(fn[1]) * k1;
+        if (threaded) {
+          parallelFor(lineEnd - lineBegin, [&](std::int64_t l) {
+            coarsenLines(F, C, factors_[0], a, lineBegin + l, lineBegin + l + 1);
+          });
+        } else {
+          coarsenLines(F, C, factors_[0], a, lineBegin, lineEnd);
+        }
+      }
+#pragma omp barrier
+      const auto [k0, k1] = planes(C.n[2], 0);
+      const auto lineBegin = static_cast<std::int64_t>(C.n[1]) * k0, lineEnd = static_cast<std::int64_t>(C.n[1]) * k1;
+      if (threaded) {
+        parallelFor(lineEnd - lineBegin, [&](std::int64_t l) { diagonalLines(C, dirichlet_, lineBegin + l, lineBegin + l + 1); });
+      } else {
+        diagonalLines(C, dirichlet_, lineBegin, lineEnd);
+      }
+    }
+  };
+  if (team > 1) {
+#pragma omp parallel num_threads(team)
+    member(omp_get_thread_num(), omp_get_num_threads());
+  } else {
+    member(0, 1);
+  }
+  if (team > 1) setupTeam_.record(team, TeamTuner::now() - started);
+  classifyLevel(F);
+  if (twoLevels) classifyLevel(levels_[1]);
+  for (std::size_t l = 2; l < count; ++l) {  // small levels
+    coarsen(levels_[l - 1], levels_[l], factors_[l - 1]);
+    buildDiagonal(levels_[l], dirichlet_);
   }
   factorCoarsest();
-  const std::size_t N = levels_[0].cells();
-  activeCells_ = 0.0;
-  for (double v : levels_[0].invDiag) activeCells_ += v > 0.0 ? 1.0 : 0.0;
-  r_.assign(N, 0.0);
-  z_.assign(N, 0.0);
-  p_.assign(N, 0.0);
-  q_.assign(N, 0.0);
-  zeros_.assign(static_cast<std::size_t>(levels_[0].n[0]) + 1, 0.0);
+  activeCells_ = 0.0;  // a count: exact in any order
+  for (double v : F.invDiag) activeCells_ += v > 0.0 ? 1.0 : 0.0;
+  zeros_.assign(static_cast<std::size_t>(F.n[0]) + 1, 0.0);
 }
 
 namespace {
@@ -216,6 +289,17 @@ void MultigridPoisson::solveCoarsest(PoissonLevel& L) const {
 }
 
 void MultigridPoisson::buildDiagonal(PoissonLevel& L, const std::array<bool, 6>& dirichlet) const {
+  classifyLevel(L);
+  allocateDiagonal(L);
+  const auto lines = static_cast<std::int64_t>(L.n[1]) * L.n[2];
+  if (lines < kSerialBelow || serialLoops()) {
+    diagonalLines(L, dirichlet, 0, lines);
+  } else {
+    parallelFor(lines, [&](std::int64_t line) { diagonalLines(L, dirichlet, line, line + 1); });
+  }
+}
+
+void MultigridPoisson::classifyLevel(PoissonLevel& L) {
   // Constant coefficients? (faces between two cells, wrap-around faces of periodic axes included)
   L.constantT = true;
   for (int a = 0; a < 3 && L.constantT; ++a) {
@@ -237,13 +321,21 @@ void MultigridPoisson::buildDiagonal(PoissonLevel& L, const std::array<bool, 6>&
           }
         }
   }
-  L.invDiag.assign(L.cells(), 0.0);
-  L.diag.assign(L.cells(), 0.0);
   L.redBlackSafe = true;
   for (int a = 0; a < 3; ++a)
     if (L.periodic[a] && L.n[a] % 2 == 1) L.redBlackSafe = false;
-  const int nx = L.n[0], ny = L.n[1], nz = L.n[2];
-  parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
+}
+
+void MultigridPoisson::allocateDiagonal(PoissonLevel& L) {
+  // Every entry is written by diagonalLines: sized, not cleared.
+  L.invDiag.resize(L.cells());
+  L.diag.resize(L.cells());
+}
+
+void MultigridPoisson::diagonalLines(PoissonLevel& L, const std::array<bool, 6>& dirichlet, std::int64_t lineBegin,
+                                     std::int64_t lineEnd) {
+  const int nx = L.n[0], ny = L.n[1];
+  for (std::int64_t line = lineBegin; line < lineEnd; ++line) {
     const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
     for (int i = 0; i < nx; ++i) {
       const int idx[3] = {i, j, k};
@@ -261,53 +353,73 @@ void MultigridPoisson::buildDiagonal(PoissonLevel& L, const std::array<bool, 6>&
       L.invDiag[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * line] = d > 0.0 ? 1.0 / d : 0.0;
       L.diag[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * line] = d;
     }
-  });
+  }
 }
 
 void MultigridPoisson::coarsen(const PoissonLevel& fine, PoissonLevel& coarse, const std::array<int, 3>& f) const {
+  coarsenShape(fine, coarse, f);
+  for (int a = 0; a < 3; ++a) {
+    std::array<int, 3> fn = coarse.n;
+    fn[a] += 1;
+    const auto lines = static_cast<std::int64_t>(fn[1]) * fn[2];
+    if (lines < kSerialBelow || serialLoops()) {
+      coarsenLines(fine, coarse, f, a, 0, lines);
+    } else {
+      parallelFor(lines, [&](std::int64_t line) { coarsenLines(fine, coarse, f, a, line, line + 1); });
+    }
+  }
+}
+
+void MultigridPoisson::coarsenShape(const PoissonLevel& fine, PoissonLevel& coarse, const std::array<int, 3>& f) {
   for (int a = 0; a < 3; ++a) coarse.n[a] = (fine.n[a] + f[a] - 1) / f[a];
   coarse.periodic = fine.periodic;
   for (int a = 0; a < 3; ++a) {
-    const int b = (a + 1) % 3, c = (a + 2) % 3;
     std::array<int, 3> fn = coarse.n;
     fn[a] += 1;
-    coarse.T[a].assign(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2], 0.0);
-    // Rediscretisation: divide by the coarse centre distance in fine cells, (size of the block
-    // below + size above) / 2, or the adjacent block's size at a non-periodic boundary face (there
-    // the operator doubles T: half a block to the boundary). 2 everywhere for even counts; odd
-    // counts leave a last block of 1 cell. One value per coarse face position along a.
-    const int nc = coarse.n[a], nf = fine.n[a];
-    std::vector<double> distance(static_cast<std::size_t>(nc) + 1, 1.0);
-    if (f[a] == 2)
-      for (int C = 0; C <= nc; ++C) {
-        auto blockSize = [&](int I) { return std::min(2, nf - 2 * I); };
-        const int below = C > 0 ? C - 1 : (fine.periodic[a] ? nc - 1 : -1);
-        const int above = C < nc ? C : (fine.periodic[a] ? 0 : -1);
-        if (below >= 0 && above >= 0) distance[static_cast<std::size_t>(C)] = 0.5 * (blockSize(below) + blockSize(above));
-        else distance[static_cast<std::size_t>(C)] = blockSize(below >= 0 ? below : above);
-      }
-    // Fine face array of axis a: strides per axis.
-    const std::size_t fx = static_cast<std::size_t>(fine.n[0]) + (a == 0), fy = static_cast<std::size_t>(fine.n[1]) + (a == 1);
-    const std::size_t fineStride[3] = {1, fx, fx * fy};
-    const double* T = fine.T[a].data();
-    parallelFor(static_cast<std::int64_t>(fn[1]) * fn[2], [&](std::int64_t line) {
-      const int J = static_cast<int>(line % fn[1]), K = static_cast<int>(line / fn[1]);
-      double* out = coarse.T[a].data() + static_cast<std::size_t>(fn[0]) * static_cast<std::size_t>(line);
-      for (int I = 0; I < fn[0]; ++I) {
-        const int C[3] = {I, J, K};
-        int F[3];
-        F[a] = std::min(C[a] * f[a], fine.n[a]);  // last face of an odd axis: the boundary face
-        F[b] = C[b] * f[b];
-        F[c] = C[c] * f[c];
-        // Children inside the fine grid (odd axis: one child only), summed in (db, dc) order.
-        const int nb = std::min(f[b], fine.n[b] - F[b]), ncc = std::min(f[c], fine.n[c] - F[c]);
-        const std::size_t base = F[0] * fineStride[0] + F[1] * fineStride[1] + F[2] * fineStride[2];
-        double sum = 0.0;
-        for (int db = 0; db < nb; ++db)
-          for (int dc = 0; dc < ncc; ++dc) sum += T[base + db * fineStride[b] + dc * fineStride[c]];
-        out[I] = sum / distance[static_cast<std::size_t>(C[a])];
-      }
-    });
+    coarse.T[a].resize(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2]);  // every face written by coarsenLines
+  }
+}
+
+void MultigridPoisson::coarsenLines(const PoissonLevel& fine, PoissonLevel& coarse, const std::array<int, 3>& f, int a,
+                                    std::int64_t lineBegin, std::int64_t lineEnd) {
+  const int b = (a + 1) % 3, c = (a + 2) % 3;
+  std::array<int, 3> fn = coarse.n;
+  fn[a] += 1;
+  // Rediscretisation: divide by the coarse centre distance in fine cells, (size of the block
+  // below + size above) / 2, or the adjacent block's size at a non-periodic boundary face (there
+  // the operator doubles T: half a block to the boundary). 2 everywhere for even counts; odd
+  // counts leave a last block of 1 cell. One value per coarse face position along a.
+  const int nc = coarse.n[a], nf = fine.n[a];
+  std::vector<double> distance(static_cast<std::size_t>(nc) + 1, 1.0);
+  if (f[a] == 2)
+    for (int C = 0; C <= nc; ++C) {
+      auto blockSize = [&](int I) { return std::min(2, nf - 2 * I); };
+      const int below = C > 0 ? C - 1 : (fine.periodic[a] ? nc - 1 : -1);
+      const int above = C < nc ? C : (fine.periodic[a] ? 0 : -1);
+      if (below >= 0 && above >= 0) distance[static_cast<std::size_t>(C)] = 0.5 * (blockSize(below) + blockSize(above));
+      else distance[static_cast<std::size_t>(C)] = blockSize(below >= 0 ? below : above);
+    }
+  // Fine face array of axis a: strides per axis.
+  const std::size_t fx = static_cast<std::size_t>(fine.n[0]) + (a == 0), fy = static_cast<std::size_t>(fine.n[1]) + (a == 1);
+  const std::size_t fineStride[3] = {1, fx, fx * fy};
+  const double* T = fine.T[a].data();
+  for (std::int64_t line = lineBegin; line < lineEnd; ++line) {
+    const int J = static_cast<int>(line % fn[1]), K = static_cast<int>(line / fn[1]);
+    double* out = coarse.T[a].data() + static_cast<std::size_t>(fn[0]) * static_cast<std::size_t>(line);
+    for (int I = 0; I < fn[0]; ++I) {
+      const int C[3] = {I, J, K};
+      int F[3];
+      F[a] = std::min(C[a] * f[a], fine.n[a]);  // last face of an odd axis: the boundary face
+      F[b] = C[b] * f[b];
+      F[c] = C[c] * f[c];
+      // Children inside the fine grid (odd axis: one child only), summed in (db, dc) order.
+      const int nb = std::min(f[b], fine.n[b] - F[b]), ncc = std::min(f[c], fine.n[c] - F[c]);
+      const std::size_t base = F[0] * fineStride[0] + F[1] * fineStride[1] + F[2] * fineStride[2];
+      double sum = 0.0;
+      for (int db = 0; db < nb; ++db)
+        for (int dc = 0; dc < ncc; ++dc) sum += T[base + db * fineStride[b] + dc * fineStride[c]];
+      out[I] = sum / distance[static_cast<std::size_t>(C[a])];
+    }
   }
 }
 

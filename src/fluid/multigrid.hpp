@@ -76,7 +76,18 @@ class MultigridPoisson {
   PoissonResult solveTeam(std::vector<double>& x, const std::vector<double>& b, double relativeTolerance,
                           int maxIterations, int team);
   void buildDiagonal(PoissonLevel& L, const std::array<bool, 6>& dirichlet) const;
+  // buildDiagonal in parts: constantT / redBlackSafe (whole level), sizes, grid lines (threads
+  // may split the lines).
+  static void classifyLevel(PoissonLevel& L);
+  static void allocateDiagonal(PoissonLevel& L);
+  static void diagonalLines(PoissonLevel& L, const std::array<bool, 6>& dirichlet, std::int64_t lineBegin,
+                            std::int64_t lineEnd);
   void coarsen(const PoissonLevel& fine, PoissonLevel& coarse, const std::array<int, 3>& factor) const;
+  // coarsen in parts: the coarse shape and array sizes, then the coarse faces of axis a on the
+  // face array's grid lines [lineBegin, lineEnd).
+  static void coarsenShape(const PoissonLevel& fine, PoissonLevel& coarse, const std::array<int, 3>& factor);
+  static void coarsenLines(const PoissonLevel& fine, PoissonLevel& coarse, const std::array<int, 3>& factor, int a,
+                           std::int64_t lineBegin, std::int64_t lineEnd);
   void applyLevel(const PoissonLevel& L, const std::vector<double>& x, std::vector<double>& y) const;
   void relaxLine(PoissonLevel& L, int j, int k, int colour) const;
   void smoothColour(PoissonLevel& L, int colour) const;
@@ -108,6 +119,8 @@ class MultigridPoisson {
   std::vector<double> zeros_;           // zero coefficient line (missing neighbours), n_x + 1 long
   std::vector<double> teamSums_[4];     // per-line partial sums of the team solve (b.b, r.r, p.Ap, r.z)
   TeamTuner team_;                      // one thread or a team for solveTeam (speed only)
+  TeamTuner setupTeam_;                 // one thread or a team for setup's fine levels (speed only)
+  std::array<int, 3> callerN_{0, 0, 0};  // grid of callerCell_
   std::vector<double> coarseCholesky_;  // dense Cholesky factor of the coarsest level (empty: GS sweeps)
 };
 

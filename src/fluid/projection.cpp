@@ -268,8 +268,9 @@ void Solver::project(double dt, double g0) {
     poissonKey_ = uniformCoupling_ ? timeCoeff : -1.0;
   }
   // Pressure outlets: phi_b = p_out - p^n_b with p^n_b the interior pressure extrapolated
-  // linearly to the boundary, so that at convergence the pressure meets p_out there.
-  auto forOutletCells = [&](auto&& body) {
+  // linearly to the boundary, so that at convergence the pressure meets p_out there. Cells of the
+  // z planes [kBegin, kEnd) only.
+  auto forOutletCells = [&](int kBegin, int kEnd, auto&& body) {
     for (int a = 0; a < dims; ++a)
       for (int s = 0; s < 2; ++s) {
         if (bc_.at(a, s).type != BoundaryType::PressureOutlet) continue;
@@ -280,7 +281,7 @@ void Solver::project(double dt, double g0) {
             cell[a] = s == 0 ? 0 : n - 1;
             cell[b1] = p;
             cell[b2] = q;
-            if (blocked(cell[0], cell[1], cell[2])) continue;
+            if (cell[2] < kBegin || cell[2] >= kEnd || blocked(cell[0], cell[1], cell[2])) continue;
             const std::size_t cc = p_.index(cell[0], cell[1], cell[2]);
             const std::ptrdiff_t inward = (s == 0 ? 1 : -1) * p_.stride(a);
             const double pb = n >= 2 ? 1.5 * p_.data()[cc] - 0.5 * p_.data()[cc + inward] : p_.data()[cc];
@@ -289,7 +290,7 @@ void Solver::project(double dt, double g0) {
           }
       }
   };
-  forOutletCells([&](const int* cell, std::size_t, std::size_t face, std::ptrdiff_t, double phiB, int a) {
+  forOutletCells(0, nz, [&](const int* cell, std::size_t, std::size_t face, std::ptrdiff_t, double phiB, int a) {
     const double areaOverH = grid_.cellVolume() / (grid_.spacing[a] * grid_.spacing[a]);
     const double epsF = avg(E, face, p_.stride(a));
     const double T = epsF * correctionCoeff(a, face) * areaOverH;
@@ -299,20 +300,32 @@ void Solver::project(double dt, double g0) {
   const PoissonResult res = poisson_.solve(poissonX_, poissonRhs_, pressureTolerance_, pressureMaxIterations_);
   stats_.pressureIterations = res.iterations;
   stats_.pressureResidual = res.relativeResidual;
-  parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {
-    const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
-    double* phiLine = phi_.data().data() + phi_.index(0, j, k);
-    const double* x = poissonX_.data() + static_cast<std::size_t>(nx) * line;
-    for (int i = 0; i < nx; ++i) phiLine[i] = x[i];
-  });
-  fillCellGhosts(phi_, bc_, CellGhostKind::PressureIncrement);
-  forOutletCells([&](const int*, std::size_t cc, std::size_t, std::ptrdiff_t inward, double phiB, int) {
-    phi_.data()[cc - inward] = 2.0 * phiB - phi_.data()[cc];
-  });
   const double* Phi = phi_.data().data();
   // eps = 1, K = 0: the same coefficient everywhere (no division per face).
   const double uniformCoeff = 1.0 / timeCoeff;
+  // A team fills the ghosts of phi, u and p in its region, each member those of its planes (the
+  // z sides from the first and last two planes: members own >= 2 planes, z not periodic).
+  const bool fillInTeam = team > 1 && !bc_.periodic(2) && nz >= 2 * team;
   inTeam(projectTeam_[1], [&](const PlaneSlab* slab) {
+    // phi = the increment, with its ghosts.
+    // (members' own planes, or all on one member)
+    const bool own = slab && fillInTeam;
+    if (own || !slab || slab->first) {
+      const auto [lb, le] = own ? range(slab, grid_.cells) : std::pair<std::int64_t, std::int64_t>{0, -1};
+      forLines(static_cast<std::int64_t>(ny) * nz, lb, le, [&](std::int64_t line) {
+        const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
+        double* phiLine = phi_.data().data() + phi_.index(0, j, k);
+        const double* x = poissonX_.data() + static_cast<std::size_t>(nx) * line;
+        for (int i = 0; i < nx; ++i) phiLine[i] = x[i];
+      });
+      const GhostPlanes planes = own ? slab->ghostPlanes(grid_.cells) : GhostPlanes{};
+      fillCellGhostsPlanes(phi_, bc_, CellGhostKind::PressureIncrement, planes);
+      forOutletCells(planes.kBegin, planes.kEnd < 0 ? nz : planes.kEnd,
+                     [&](const int*, std::size_t cc, std::size_t, std::ptrdiff_t inward, double phiB, int) {
+                       phi_.data()[cc - inward] = 2.0 * phiB - phi_.data()[cc];
+                     });
+    }
+#pragma omp barrier
     for (int a = 0; a < dims; ++a) {
       Field& u = u_[a];
       const auto& pts = u.points();
@@ -335,6 +348,7 @@ void Solver::project(double dt, double g0) {
           U[i] -= coeff * (Phi[cc] - Phi[cc - se]) * invH;
         }
       });
+      if (own) fillVelocityGhostsPlanes(u, a, bc_, GhostMode::Full, slab->ghostPlanes(pts));
     }
     // p += phi over the whole array (ghosts included): the member's planes (the first and last
     // members also the ghost planes).
@@ -347,9 +361,12 @@ void Solver::project(double dt, double g0) {
     } else {
       for (std::size_t q = b; q < e; ++q) P[q] += Phi[q];
     }
+    if (own) fillCellGhostsPlanes(p_, bc_, CellGhostKind::Pressure, slab->ghostPlanes(grid_.cells));
   });
-  for (int a = 0; a < dims; ++a) fillVelocityGhosts(u_[a], a, bc_, GhostMode::Full);
-  fillCellGhosts(p_, bc_, CellGhostKind::Pressure);
+  if (!fillInTeam) {
+    for (int a = 0; a < dims; ++a) fillVelocityGhosts(u_[a], a, bc_, GhostMode::Full);
+    fillCellGhosts(p_, bc_, CellGhostKind::Pressure);
+  }
   ghostsFresh_ = dims == 3;  // (2D: w is not refilled here)
 }
 

@@ -92,6 +92,7 @@ namespace {
 TEST(TeamTuner, KeepsTheFasterChoiceAndProbesTheOther) {
   // Synthetic timings: the team takes 1 ms, one thread 3 ms (idle machine), then the team
   // becomes slow (20 ms: an oversubscribed machine) and the tuner must switch to one thread.
+  if (TeamTuner::forcedChoice() != 0) GTEST_SKIP() << "GF_FLUID_TEAM overrides the tuner";
   TeamTuner tuner;
   auto simulate = [&](double teamSeconds, double serialSeconds, int calls) -> int {
     int teamCalls = 0;
