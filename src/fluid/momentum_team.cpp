@@ -151,29 +151,30 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
   // column, over D >= rho gamma0 eps_min / dt; ||M||_2 <= sqrt(||M||_1 ||M||_inf). A sweep whose
   // residual r_s satisfies 2 bound r_s <= tol has produced an iterate with ||r_{s+1}|| <= tol / 2:
   // it is accepted without the sweep that would only confirm it (the same iterate as before).
-  double contraction = std::numeric_limits<double>::infinity();
-  {
-    // min and max of eps (exact whatever the order: four independent lanes, which vectorise;
-    // std::minmax_element is one serial chain, 2 % of a bed fluid step).
-    const auto& e = coupling_.voidFraction.data();
+  // min and max of eps over the member's planes (exact whatever the order or split: four
+  // independent lanes, which vectorise; std::minmax_element is one serial chain, 2 % of a bed
+  // fluid step), combined after a barrier into the contraction bound by every member.
+  double wMax = 0.0;
+  for (int d = 0; d < 3; ++d) wMax = std::max(wMax, mu_ / (grid_.spacing[d] * grid_.spacing[d]));
+  auto epsRange = [&](std::size_t begin, std::size_t end, double& lo, double& hi) {
+    const double* e = coupling_.voidFraction.data().data();
     double lo4[4], hi4[4];
-    for (int q = 0; q < 4; ++q) lo4[q] = hi4[q] = e[0];
-    std::size_t q = 0;
-    for (; q + 4 <= e.size(); q += 4)
+    for (int q = 0; q < 4; ++q) lo4[q] = hi4[q] = e[begin];
+    std::size_t q = begin;
+    for (; q + 4 <= end; q += 4)
       for (int l = 0; l < 4; ++l) {
         lo4[l] = std::min(lo4[l], e[q + l]);
         hi4[l] = std::max(hi4[l], e[q + l]);
       }
-    for (; q < e.size(); ++q) {
+    for (; q < end; ++q) {
       lo4[0] = std::min(lo4[0], e[q]);
       hi4[0] = std::max(hi4[0], e[q]);
     }
-    const double lo = std::min(std::min(lo4[0], lo4[1]), std::min(lo4[2], lo4[3]));
-    const double hi = std::max(std::max(hi4[0], hi4[1]), std::max(hi4[2], hi4[3]));
-    double wMax = 0.0;
-    for (int d = 0; d < 3; ++d) wMax = std::max(wMax, mu_ / (grid_.spacing[d] * grid_.spacing[d]));
-    if (lo > 0.0) contraction = 12.0 * wMax * std::max(1.0, hi) / (timeCoeff * lo);
-  }
+    lo = std::min(std::min(lo4[0], lo4[1]), std::min(lo4[2], lo4[3]));
+    hi = std::max(std::max(hi4[0], hi4[1]), std::max(hi4[2], hi4[3]));
+  };
+  std::vector<double>& memberRange = epsMemberRange_;  // lo, hi per member
+  memberRange.assign(2 * static_cast<std::size_t>(std::max(team, 1)), 0.0);
   constexpr int kMaxSweeps = 40;  // as solveHelmholtz's Jacobi branch; BiCGStab takes over after
   int iterations[3] = {0, 0, 0};
   bool converged[3] = {true, true, true};
@@ -190,6 +191,11 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
       return std::pair<std::size_t, std::size_t>{b, e};
     };
     computeCellDivergence(&slab);
+    {
+      const auto [b, e] = flatRange(coupling_.voidFraction);
+      const int t = team > 1 ? omp_get_thread_num() : 0;
+      epsRange(b, e, memberRange[2 * t], memberRange[2 * t + 1]);
+    }
 #pragma omp barrier
     // Convection and right-hand sides in one pass; ||b||^2 per line into teamPartial_[c][0].
     double* const bPartial[3] = {teamPartial_[0][0].data(), teamPartial_[1][0].data(), teamPartial_[2][0].data()};
@@ -229,6 +235,16 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
     }
 #pragma omp barrier
     // Every member takes the same decisions from the same line sums (no further communication).
+    double contraction = std::numeric_limits<double>::infinity();
+    {
+      const int members = team > 1 ? omp_get_num_threads() : 1;
+      double lo = memberRange[0], hi = memberRange[1];
+      for (int m = 1; m < members; ++m) {
+        lo = std::min(lo, memberRange[2 * m]);
+        hi = std::max(hi, memberRange[2 * m + 1]);
+      }
+      if (lo > 0.0) contraction = 12.0 * wMax * std::max(1.0, hi) / (timeCoeff * lo);
+    }
     double tol[3];
     bool active[3];
     int its[3] = {0, 0, 0};

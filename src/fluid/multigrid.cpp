@@ -823,17 +823,20 @@ void MultigridPoisson::apply(const std::vector<double>& x, std::vector<double>& 
 
 PoissonResult MultigridPoisson::solve(std::vector<double>& x, const std::vector<double>& b, double tol,
                                       int maxIterations) {
-  auto run = [&](std::vector<double>& xi, const std::vector<double>& bi) {
-    if (!teamApplicable()) return solveInternal(xi, bi, tol, maxIterations);
+  if (teamApplicable()) {
+    // (the team copies x and b into the internal cell order and x back, each member its lines)
     const PoissonLevel& F = levels_[0];
     const auto cells = static_cast<std::int64_t>(F.cells());
     const int maxTeam = static_cast<int>(std::min<std::int64_t>(
         {gf::threadCount(), F.n[2], levels_[1].n[2], std::max<std::int64_t>(1, cells / kTeamCellsPerThread)}));
     const int team = team_.pick(maxTeam);
     const double started = TeamTuner::now();
-    const PoissonResult r = solveTeam(xi, bi, tol, maxIterations, team);
+    const PoissonResult r = solveTeam(x, b, tol, maxIterations, team);
     team_.record(team, TeamTuner::now() - started);
     return r;
+  }
+  auto run = [&](std::vector<double>& xi, const std::vector<double>& bi) {
+    return solveInternal(xi, bi, tol, maxIterations);
   };
   if (callerCell_.empty()) return run(x, b);
   const std::size_t N = callerCell_.size();
@@ -920,8 +923,11 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
   const auto buffers = static_cast<std::size_t>(std::max(team, gf::threadCount()));
   if (lineBuffer_.size() < stride * buffers) lineBuffer_.resize(stride * buffers);
   PoissonResult result;
-  double* x = xv.data();
-  const double* b = bv.data();
+  // x and b in the caller's cell order (callerCell_), or the internal one (callerCell_ empty).
+  const bool permuted = !callerCell_.empty();
+  double* x = permuted ? xInternal_.data() : xv.data();
+  const double* b = permuted ? bInternal_.data() : bv.data();
+  const std::size_t* caller = callerCell_.data();
   double* r = L.b.data();  // residual (the fine level's right-hand side)
   double* z = L.x.data();  // preconditioned residual (the fine level's solution)
   double* p = p_.data();
@@ -1003,6 +1009,17 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
 #pragma omp barrier
       return sum(3);
     };
+    if (permuted) {
+      double* xi = xInternal_.data();
+      double* bi = bInternal_.data();
+      const double* xc = xv.data();
+      const double* bc = bv.data();
+      for (auto c = static_cast<std::size_t>(nx * lb); c < static_cast<std::size_t>(nx * le); ++c) {
+        xi[c] = xc[caller[c]];
+        bi[c] = bc[caller[c]];
+      }
+#pragma omp barrier  // (A x reads the neighbouring members' planes of x)
+    }
     // r = b - A x; ||b||, ||r||.
     for (std::int64_t line = lb; line < le; ++line) {
       const std::size_t base = static_cast<std::size_t>(nx) * line;
@@ -1053,6 +1070,10 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
           for (int i = 0; i < nx; ++i) p[base + i] = z[base + i] + beta * p[base + i];
         }
       }
+    }
+    if (permuted) {  // the member's lines of x are final
+      double* xc = xv.data();
+      for (auto c = static_cast<std::size_t>(nx * lb); c < static_cast<std::size_t>(nx * le); ++c) xc[caller[c]] = x[c];
     }
     if (t == 0) {
       result.iterations = iterations;

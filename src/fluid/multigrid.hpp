@@ -71,7 +71,8 @@ class MultigridPoisson {
                               int maxIterations);
   /// solveInternal for small non-singular grids in one parallel region (multigrid_team in
   /// multigrid.cpp): the threads split the planes of the fine level, coarser levels run on one
-  /// thread; the same result for any team size (sums per grid line, in line order).
+  /// thread; the same result for any team size (sums per grid line, in line order). x and b are
+  /// in the caller's cell order (the members copy their lines into and out of the internal one).
   bool teamApplicable() const;
   PoissonResult solveTeam(std::vector<double>& x, const std::vector<double>& b, double relativeTolerance,
                           int maxIterations, int team);

@@ -199,24 +199,34 @@ void Solver::buildUnknownMasks() {
 }
 
 void Solver::fillAllGhosts() {
-  fillCellGhosts(coupling_.voidFraction, bc_, CellGhostKind::ZeroGradient);  // first: superficial inlets use it
   // After a step's projection only the axes from the first inlet / moving wall on need a refill
   // (the others' ghosts are functions of the unchanged interior values: the same numbers), and p's
   // ghosts none (a 2 x 30 x 90 bed: the x sides are 60 % of the ghost fill work).
   const int firstAxis = ghostsFresh_ ? firstTimeDependentVelocityAxis(bc_) : 0;
-  for (int c = 0; c < 3; ++c) fillVelocityGhosts(u_[c], c, bc_, GhostMode::Full, firstAxis);
-  if (!ghostsFresh_) fillCellGhosts(p_, bc_, CellGhostKind::Pressure);
+  const bool fresh = ghostsFresh_;
+  // Small grids: on a plane team, each member the ghosts of its planes (every field in the
+  // order below: the same values).
+  forCellPlanes(ghostTeam_, [&](const PlaneSlab* slab) {
+    auto cells = [&](Field& f, CellGhostKind kind) {
+      fillCellGhostsPlanes(f, bc_, kind, slab ? slab->ghostPlanes(f.points()) : GhostPlanes{});
+    };
+    cells(coupling_.voidFraction, CellGhostKind::ZeroGradient);  // first: superficial inlets use it
+    for (int c = 0; c < 3; ++c)
+      fillVelocityGhostsPlanes(u_[c], c, bc_, GhostMode::Full, slab ? slab->ghostPlanes(u_[c].points()) : GhostPlanes{},
+                               firstAxis);
+    if (!fresh) cells(p_, CellGhostKind::Pressure);
+    // eps_old, eps_older, F and u_p are read only at momentum unknown faces (cell on each side:
+    // a ghost only across a periodic boundary); K also at pressure outlet faces.
+    cells(coupling_.voidFractionOld, CellGhostKind::PeriodicOnly);
+    cells(epsOlder_, CellGhostKind::PeriodicOnly);
+    cells(coupling_.dragCoefficient, CellGhostKind::ZeroGradient);
+    for (int c = 0; c < 3; ++c) {
+      cells(coupling_.forceDensity[c], CellGhostKind::PeriodicOnly);
+      cells(coupling_.particleVelocity[c], CellGhostKind::PeriodicOnly);
+    }
+    if (scalarEnabled_) cells(scalar_, CellGhostKind::Scalar);
+  });
   ghostsFresh_ = false;  // the step changes u and p
-  // eps_old, eps_older, F and u_p are read only at momentum unknown faces (cell on each side:
-  // a ghost only across a periodic boundary); K also at pressure outlet faces.
-  fillCellGhosts(coupling_.voidFractionOld, bc_, CellGhostKind::PeriodicOnly);
-  fillCellGhosts(epsOlder_, bc_, CellGhostKind::PeriodicOnly);
-  fillCellGhosts(coupling_.dragCoefficient, bc_, CellGhostKind::ZeroGradient);
-  for (int c = 0; c < 3; ++c) {
-    fillCellGhosts(coupling_.forceDensity[c], bc_, CellGhostKind::PeriodicOnly);
-    fillCellGhosts(coupling_.particleVelocity[c], bc_, CellGhostKind::PeriodicOnly);
-  }
-  if (scalarEnabled_) fillCellGhosts(scalar_, bc_, CellGhostKind::Scalar);
 }
 
 void Solver::setVelocity(const std::function<Vec3(const Vec3&)>& f) {
@@ -362,58 +372,88 @@ double Solver::stableTimeStep() const {
 }
 
 void Solver::cellVelocity(Field out[3]) const {
-  // Called by the coupling every fluid step: small grids loop serially, as in step().
+  // Called by the coupling every fluid step: small grids loop serially, as in step(), or on a
+  // plane team (each member its planes and their ghosts).
   const SerialFluidScope serial(grid_.interiorCellCount() < kSerialCellsBelow);
-  for (int c = 0; c < 3; ++c) {
+  for (int c = 0; c < 3; ++c)
     if (out[c].data().size() != p_.data().size()) out[c] = Field(grid_);
-    Field& o = out[c];
-    const Field& u = u_[c];
-    const auto s = u.stride(c);
-    parallelFor(static_cast<std::int64_t>(grid_.cells[1]) * grid_.cells[2], [&](std::int64_t line) {
-      const int j = static_cast<int>(line % grid_.cells[1]), k = static_cast<int>(line / grid_.cells[1]);
-      for (int i = 0; i < grid_.cells[0]; ++i) {
-        const std::size_t f = u.index(i, j, k);
-        o(i, j, k) = 0.5 * (u.data()[f] + u.data()[f + s]);
-      }
-    });
-    fillCellGhosts(o, bc_, CellGhostKind::ZeroGradient);
-  }
+  forCellPlanes(cellVelocityTeam_, [&](const PlaneSlab* slab) {
+    for (int c = 0; c < 3; ++c) {
+      Field& o = out[c];
+      const Field& u = u_[c];
+      const auto s = u.stride(c);
+      auto line = [&](std::int64_t line) {
+        const int j = static_cast<int>(line % grid_.cells[1]), k = static_cast<int>(line / grid_.cells[1]);
+        for (int i = 0; i < grid_.cells[0]; ++i) {
+          const std::size_t f = u.index(i, j, k);
+          o(i, j, k) = 0.5 * (u.data()[f] + u.data()[f + s]);
+        }
+      };
+      cellLinesAndGhosts(slab, o, line);
+    }
+  });
 }
 
 void Solver::pressureGradient(Field out[3]) const {
   const SerialFluidScope serial(grid_.interiorCellCount() < kSerialCellsBelow);
-  for (int c = 0; c < 3; ++c) {
+  for (int c = 0; c < 3; ++c)
     if (out[c].data().size() != p_.data().size()) out[c] = Field(grid_);
-    Field& o = out[c];
-    const auto s = p_.stride(c);
-    const double invH = 1.0 / grid_.spacing[c];
-    // The mean driving gradient (-dp/dx = drive_, applied as a body force) is part of grad p: the
-    // particles must feel it too (e.g. the buoyancy of a suspension in a periodic box).
-    const double mean = (driveMode_ != DrivingMode::None && driveAxis_ == c) ? -drive_ : 0.0;
-    const int n = grid_.cells[c];
-    // Ghosts of zero normal gradient (walls, inlets, slip, outflow) and blocked neighbours carry
-    // no pressure information: there the gradient is one-sided from the other neighbour (a
-    // central difference with the mirrored value would halve it, e.g. the hydrostatic gradient,
-    // i.e. the buoyancy of particles in the cells next to a wall). Pressure-outlet ghosts are
-    // Dirichlet images and keep the central difference.
-    const bool mirrorLow = !bc_.periodic(c) && bc_.at(c, 0).type != BoundaryType::PressureOutlet;
-    const bool mirrorHigh = !bc_.periodic(c) && bc_.at(c, 1).type != BoundaryType::PressureOutlet;
-    parallelFor(static_cast<std::int64_t>(grid_.cells[1]) * grid_.cells[2], [&](std::int64_t line) {
-      const int j = static_cast<int>(line % grid_.cells[1]), k = static_cast<int>(line / grid_.cells[1]);
-      for (int i = 0; i < grid_.cells[0]; ++i) {
-        const std::size_t id = p_.index(i, j, k);
-        const int along = c == 0 ? i : (c == 1 ? j : k);
-        const bool noPlus = blocked_[id + s] || (mirrorHigh && along == n - 1);
-        const bool noMinus = blocked_[id - s] || (mirrorLow && along == 0);
-        const double* pd = p_.data().data();
-        double g = 0.0;
-        if (!noPlus && !noMinus) g = 0.5 * (pd[id + s] - pd[id - s]) * invH;
-        else if (!noPlus) g = (pd[id + s] - pd[id]) * invH;
-        else if (!noMinus) g = (pd[id] - pd[id - s]) * invH;
-        o.data()[id] = (twoD_ && c == 2) ? 0.0 : g + mean;
-      }
-    });
-    fillCellGhosts(o, bc_, CellGhostKind::ZeroGradient);
+  forCellPlanes(pressureGradientTeam_, [&](const PlaneSlab* slab) {
+    for (int c = 0; c < 3; ++c) {
+      Field& o = out[c];
+      const auto s = p_.stride(c);
+      const double invH = 1.0 / grid_.spacing[c];
+      // The mean driving gradient (-dp/dx = drive_, applied as a body force) is part of grad p: the
+      // particles must feel it too (e.g. the buoyancy of a suspension in a periodic box).
+      const double mean = (driveMode_ != DrivingMode::None && driveAxis_ == c) ? -drive_ : 0.0;
+      const int n = grid_.cells[c];
+      // Ghosts of zero normal gradient (walls, inlets, slip, outflow) and blocked neighbours carry
+      // no pressure information: there the gradient is one-sided from the other neighbour (a
+      // central difference with the mirrored value would halve it, e.g. the hydrostatic gradient,
+      // i.e. the buoyancy of particles in the cells next to a wall). Pressure-outlet ghosts are
+      // Dirichlet images and keep the central difference.
+      const bool mirrorLow = !bc_.periodic(c) && bc_.at(c, 0).type != BoundaryType::PressureOutlet;
+      const bool mirrorHigh = !bc_.periodic(c) && bc_.at(c, 1).type != BoundaryType::PressureOutlet;
+      auto line = [&](std::int64_t line) {
+        const int j = static_cast<int>(line % grid_.cells[1]), k = static_cast<int>(line / grid_.cells[1]);
+        for (int i = 0; i < grid_.cells[0]; ++i) {
+          const std::size_t id = p_.index(i, j, k);
+          const int along = c == 0 ? i : (c == 1 ? j : k);
+          const bool noPlus = blocked_[id + s] || (mirrorHigh && along == n - 1);
+          const bool noMinus = blocked_[id - s] || (mirrorLow && along == 0);
+          const double* pd = p_.data().data();
+          double g = 0.0;
+          if (!noPlus && !noMinus) g = 0.5 * (pd[id + s] - pd[id - s]) * invH;
+          else if (!noPlus) g = (pd[id + s] - pd[id]) * invH;
+          else if (!noMinus) g = (pd[id] - pd[id - s]) * invH;
+          o.data()[id] = (twoD_ && c == 2) ? 0.0 : g + mean;
+        }
+      };
+      cellLinesAndGhosts(slab, o, line);
+    }
+  });
+}
+
+template <class Body>
+void Solver::forCellPlanes(TeamTuner& tuner, Body&& body) const {
+  // A team where the planes can be split with their ghost fills (>= 2 planes per member, z not
+  // periodic); otherwise one call with no slab (loops threaded as usual).
+  const int team = teamSize();
+  if (team <= 1 || bc_.periodic(2) || grid_.cells[2] < 2 * team) return body(static_cast<const PlaneSlab*>(nullptr));
+  runPlaneTeam(tuner, team, grid_.cells[2], [&](const PlaneSlab& slab) { body(&slab); });
+}
+
+template <class Line>
+void Solver::cellLinesAndGhosts(const PlaneSlab* slab, Field& out, Line&& line) const {
+  // line(l) for the cell lines of the slab's planes (all: threaded loop), then the zero-gradient
+  // ghosts of those planes.
+  const auto lines = static_cast<std::int64_t>(grid_.cells[1]) * grid_.cells[2];
+  if (slab) {
+    forLines(lines, slab->lineBegin(grid_.cells), slab->lineEnd(grid_.cells), line);
+    fillCellGhostsPlanes(out, bc_, CellGhostKind::ZeroGradient, slab->ghostPlanes(grid_.cells));
+  } else {
+    parallelFor(lines, line);
+    fillCellGhosts(out, bc_, CellGhostKind::ZeroGradient);
   }
 }
 

@@ -196,8 +196,18 @@ class Solver {
   std::vector<double> linePartial_;  // per-line partial sums (deterministic reductions)
   TeamTuner momentumTeam_;    // one thread or a team for predictMomentumTeam (speed only)
   TeamTuner projectTeam_[2];  // project(): coefficients + right-hand side, correction + p update
+  mutable TeamTuner cellVelocityTeam_, pressureGradientTeam_;  // cellVelocity(), pressureGradient()
+  TeamTuner ghostTeam_;                                         // fillAllGhosts()
+  /// body(slab) on a plane team (teamSize(), members own >= 2 planes, z not periodic) or
+  /// body(nullptr) once (solver.cpp).
+  template <class Body>
+  void forCellPlanes(TeamTuner& tuner, Body&& body) const;
+  /// line(l) on the cell lines of the slab (null: all) and the zero-gradient ghosts of out there.
+  template <class Line>
+  void cellLinesAndGhosts(const PlaneSlab* slab, Field& out, Line&& line) const;
   /// Largest useful thread team for the plane-split phases of a small 3D grid (1: loop by loop).
   int teamSize() const;
+  std::vector<double> epsMemberRange_;      // momentum_team.cpp: min and max of eps per team member
   std::vector<double> teamPartial_[3][3];  // momentum_team.cpp: per component, ||b||^2 and two sweep parities
   MultigridPoisson poisson_;
   double poissonKey_ = -1.0;  // rho gamma0 / dt of the current multigrid setup (-1: rebuild)
