@@ -133,7 +133,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
   for (int c = 0; c < 3; ++c) {
     const auto& pts = u_[c].points();
     const auto lines = static_cast<std::size_t>(pts[1]) * pts[2];
-    for (auto& v : teamPartial_[c]) v.assign(lines, 0.0);
+    for (auto& v : teamPartial_[c]) v.resize(lines);  // every line written before it is summed
     jacobiRows_[c].resize(unknownList_[c].size());
   }
   ClosureRows closure;

@@ -201,7 +201,9 @@ void Solver::project(double dt, double g0) {
     for (int a = 0; a < 3; ++a) {
       std::array<int, 3> fn = grid_.cells;
       fn[a] += 1;
-      T[a].assign(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2], 0.0);
+      // Faces of the dimensions: every one written below (0 off the coefficient faces).
+      if (a < dims) T[a].resize(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2]);
+      else T[a].assign(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2], 0.0);
       if (a < dims)
         for (int s = 0; s < 2; ++s) dirichlet[2 * a + s] = bc_.at(a, s).type == BoundaryType::PressureOutlet;
     }
@@ -222,7 +224,10 @@ void Solver::project(double dt, double g0) {
           double* C = correctionCoeff_[a].data() + f0;
           double* Tl = T[a].data() + fn[0] * static_cast<std::size_t>(line);
           for (int i = 0; i < fn[0]; ++i) {
-            if (!(PF[i] & 1)) continue;
+            if (!(PF[i] & 1)) {
+              Tl[i] = 0.0;
+              continue;
+            }
             const std::size_t cc = e0 + i;
             const double epsF = avg(E, cc, se);
             // correctionCoeff(a, cc), kept for the velocity correction below.
