@@ -44,13 +44,17 @@ void dispatchLaws(NormalLaw n, RollingLaw r, CohesionLaw c, F&& f) {
 /// their build (all restored by a restart): kRowCost per row (body forces, row sums, kick) + 1
 /// per listed partner (the distance test) + kTouchingCost per pair touching at the build (gather,
 /// contact law, scatter) + kWallCost per wall entry. Threads 1.. also kick their block after the
-/// barrier (thread 0 kicks during its sweep): kKickCost per row of theirs. Deterministic for a
-/// list and a thread count. The costs were fitted to per-thread CPU samples of the contact phase
-/// on 2 threads, bubbling bed and settled bed (where the touching pairs are unevenly spread over
-/// the rows: the row-count split gave the second thread 1.8 x the first's samples in the bubbling
-/// bed, the first 1.15 x the second's in the settled bed).
+/// barrier: kKickCost per row of theirs; thread 0 kicks during its sweep: kInlineKickCost per row
+/// (the kick waits there on each row's completed sums). Deterministic for a list and a thread
+/// count. The costs were fitted to per-thread CPU samples of the contact phase on 2 threads,
+/// bubbling bed and settled bed (where the touching pairs are unevenly spread over the rows: the
+/// row-count split gave the second thread 1.8 x the first's samples in the bubbling bed, the first
+/// 1.15 x the second's in the settled bed). The inline kick was first taken as free; per-thread
+/// CPU time then showed block 0 at 1.3-1.4 x block 1 (+ its kick) in the bubbling bed and 1.2 x
+/// in the settled bed; with kInlineKickCost = 1.5 both were within 0.95-1.05.
 struct BlockSplit {
-  static constexpr double kRowCost = 1.0, kTouchingCost = 2.5, kWallCost = 1.0, kKickCost = 1.0;
+  static constexpr double kRowCost = 1.0, kTouchingCost = 2.5, kWallCost = 1.0, kKickCost = 1.0,
+                          kInlineKickCost = 1.5;
   static void compute(const std::uint32_t* rowStart, const std::uint32_t* touchingStart,
                       const std::uint32_t* wallRowStart, std::size_t n, int team, std::vector<std::size_t>& start) {
     start.assign(static_cast<std::size_t>(team) + 1, 0);
@@ -73,8 +77,10 @@ struct BlockSplit {
       }
       return lo;
     };
-    // end of block 0: where its cost reaches the share of each of the other threads
-    start[1] = firstRow([&](std::size_t i) { return sweep(i) >= (withKick(n) - withKick(i)) / others; });
+    // end of block 0 (sweep + inline kick): where its cost reaches the share of each other thread
+    start[1] = firstRow([&](std::size_t i) {
+      return sweep(i) + kInlineKickCost * static_cast<double>(i) >= (withKick(n) - withKick(i)) / others;
+    });
     const double base = withKick(start[1]), share = (withKick(n) - base) / others;
     for (int t = 2; t < team; ++t)
       start[t] = std::max(start[t - 1], firstRow([&](std::size_t i) { return withKick(i) - base >= (t - 1) * share; }));
