@@ -956,11 +956,14 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
     };
     // z = one V-cycle applied to r (vcycle(0) with kPreSmooth red-black pairs before, kPostSmooth
     // black-red pairs after).
+    // The V-cycle's first step (z = 0, then the first red half-sweep) reads only the member's own
+    // lines of r: it is run right after the member's r update, before the barrier that completes
+    // the norms (nobody reads z between the previous V-cycle's last barrier and the next one; if
+    // the norm then says converged, z is not used). One barrier less per iteration (one thread:
+    // after the check, no sweep for nothing on convergence).
+    const bool earlySweep = members > 1;
     auto vcycle0 = [&]() {
-      // z = 0, then the first red half-sweep: only the member's own lines of r are read (nobody
-      // reads z between the previous V-cycle's last barrier and the next one).
-      firstHalfSweepFromZero(L, lb, le);
-#pragma omp barrier
+      if (!earlySweep) firstHalfSweepFromZero(L, lb, le);
       halfSweep(1);
 #pragma omp barrier
       for (int s = 1; s < kPreSmooth; ++s) {
@@ -1028,6 +1031,7 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
       teamSums_[0][static_cast<std::size_t>(line)] = lineDot(b, b, line);
       teamSums_[1][static_cast<std::size_t>(line)] = lineDot(r, r, line);
     }
+    if (earlySweep) firstHalfSweepFromZero(L, lb, le);  // vcycle0's first step
 #pragma omp barrier
     const double bnorm = std::sqrt(sum(0));
     double rnorm = std::sqrt(sum(1));
@@ -1057,6 +1061,7 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
           }
           teamSums_[1][static_cast<std::size_t>(line)] = lineDot(r, r, line);
         }
+        if (earlySweep) firstHalfSweepFromZero(L, lb, le);  // vcycle0's first step
 #pragma omp barrier
         rnorm = std::sqrt(sum(1));
         iterations = it;
