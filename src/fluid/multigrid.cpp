@@ -570,7 +570,7 @@ double MultigridPoisson::applyLevelDot(const PoissonLevel& L, const std::vector<
 
 namespace {
 template <bool CONSTANT, int Y>
-void relaxLineImpl(PoissonLevel& L, int j, int k, int colour, const LineStencil& st, const double* zeros) {
+[[gnu::always_inline]] inline void relaxLineImpl(PoissonLevel& L, int j, int k, int colour, const LineStencil& st, const double* zeros) {
   const int nx = L.n[0], ny = L.n[1];
   const std::size_t base = static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * k);
   double* x = L.x.data() + base;
@@ -696,7 +696,7 @@ inline void prolongLine(double* x, const double* coarse, int nx, int factor) {
 /// The first red half-sweep of a V-cycle level, whose initial x is 0, on grid lines [lb, le): the
 /// relaxation's arithmetic with all neighbours 0, x = (b + 0) / diag on the cells of colour 0,
 /// 0 on the others, with no neighbour reads (the same values, -0 + 0 included).
-void firstHalfSweepFromZero(PoissonLevel& L, std::int64_t lb, std::int64_t le) {
+[[gnu::always_inline]] inline void firstHalfSweepFromZero(PoissonLevel& L, std::int64_t lb, std::int64_t le) {
   const int nx = L.n[0], ny = L.n[1];
   for (std::int64_t line = lb; line < le; ++line) {
     const std::size_t base = static_cast<std::size_t>(nx) * line;
