@@ -161,25 +161,44 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   exchangeDeposited_ = fuse;
   particleVolume_ = 0.0;
   for (double sum : volumeSums_) particleVolume_ += sum;
-  // interior cells in (k, j, i) order by rows of flat indices (deposit_.runs)
+  // interior cells by rows of flat indices (deposit_.runs), rows in parallel (disjoint writes);
+  // the volume sums per row, added in row order: the same bits on any thread count
   double* solid = solidFraction_.data().data();
-  const double cellVolume = topology_.grid.cellVolume();
-  depositedVolume_ = 0.0;
-  for (const auto& run : deposit_.runs)
-    for (std::size_t q = run[0]; q < run[0] + run[1]; ++q) {
-      depositedVolume_ += volume[q * volumeStride];
-      solid[q] = volume[q * volumeStride] / cellVolume;  // solid fraction
-    }
-  smoothField(topology_, settings_.smoothingLength, solidFraction_);
-  clippedVolume_ = 0.0;
   double* eps = fields.voidFraction.data().data();
+  const double cellVolume = topology_.grid.cellVolume();
   const double minEps = settings_.minVoidFraction;
-  for (const auto& run : deposit_.runs)
-    for (std::size_t q = run[0]; q < run[0] + run[1]; ++q) {
-      const double e = 1.0 - solid[q];
-      if (e < minEps) clippedVolume_ += (minEps - e) * cellVolume;
-      eps[q] = std::max(e, minEps);
+  const bool smoothing = settings_.smoothingLength > 0.0;
+  auto toVoidFraction = [&](std::size_t q) {  // returns the volume clipped by min_void_fraction
+    const double e = 1.0 - solid[q];
+    eps[q] = std::max(e, minEps);
+    return e < minEps ? (minEps - e) * cellVolume : 0.0;
+  };
+  const auto* runs = deposit_.runs.data();
+  const auto runCount = static_cast<std::int64_t>(deposit_.runs.size());
+  const std::int64_t cellsPerRun = topology_.grid.cells[0];
+  runSums_.resize(deposit_.runs.size());
+  forEachIndex(runCount, 4 * cellsPerRun, [&](std::int64_t r) {
+    double deposited = 0.0, clipped = 0.0;
+    for (std::size_t q = runs[r][0]; q < runs[r][0] + runs[r][1]; ++q) {
+      deposited += volume[q * volumeStride];
+      solid[q] = volume[q * volumeStride] / cellVolume;  // solid fraction
+      if (!smoothing) clipped += toVoidFraction(q);
     }
+    runSums_[r] = {deposited, clipped, 0.0};
+  });
+  if (smoothing) {
+    smoothField(topology_, settings_.smoothingLength, solidFraction_);
+    forEachIndex(runCount, 4 * cellsPerRun, [&](std::int64_t r) {
+      double clipped = 0.0;
+      for (std::size_t q = runs[r][0]; q < runs[r][0] + runs[r][1]; ++q) clipped += toVoidFraction(q);
+      runSums_[r][1] = clipped;
+    });
+  }
+  depositedVolume_ = clippedVolume_ = 0.0;
+  for (const auto& sums : runSums_) {
+    depositedVolume_ += sums[0];
+    clippedVolume_ += sums[1];
+  }
   fillGhosts(fields.voidFraction);
 }
 
@@ -621,13 +640,21 @@ void Coupler::updateMomentumBalance(const CouplingFields& fields, bool implicit)
                          fields.particleVelocity[2].data().data()};
   const double* uf[3] = {u[0]->data().data(), u[1]->data().data(), u[2]->data().data()};
   const double* drag = fields.dragCoefficient.data().data();
-  for (const auto& run : deposit_.runs)
-    for (std::size_t q = run[0]; q < run[0] + run[1]; ++q)
+  // interior rows in parallel, the sums per row added in row order (the same bits on any thread count)
+  const auto* runs = deposit_.runs.data();
+  runSums_.resize(deposit_.runs.size());
+  forEachIndex(static_cast<std::int64_t>(deposit_.runs.size()), 8 * topology_.grid.cells[0], [&](std::int64_t r) {
+    std::array<double, 3> sum{};
+    for (std::size_t q = runs[r][0]; q < runs[r][0] + runs[r][1]; ++q)
       for (int a = 0; a < 3; ++a) {
         double s = force[a][q];
         if (implicit) s -= drag[q] * (uf[a][q] - up[a][q]);
-        onFluid[a] += s * cellVolume;
+        sum[a] += s * cellVolume;
       }
+    runSums_[r] = sum;
+  });
+  for (const auto& sum : runSums_)
+    for (int a = 0; a < 3; ++a) onFluid[a] += sum[a];
   balanceError_ = onParticles + onFluid;
 }
 

@@ -185,6 +185,7 @@ class Coupler {
   // sum over particles of the exchanged force (x, y, z) and of its magnitude, from the force pass
   std::array<double, 4> particleForceSums_{};
   std::vector<double> volumeSums_;  // per thread, computeVoidFraction
+  std::vector<std::array<double, 3>> runSums_;  // per interior row of cells (deposit_.runs)
   bool particleForceSumsValid_ = false;
 };
 
