@@ -259,32 +259,30 @@ void System::step(double dt) {
     const Vec3* f = p.force.data();
     const Vec3* tq = p.torque.data();
     const Vec3* x0 = positionAtBuild_.data();
-    auto integrate = [&](std::int64_t begin, std::int64_t end, LargestTwo& largest) {
-      for (std::int64_t i = begin; i < end; ++i) {
-        v[i] += (halfDt * inverseMass[i]) * f[i];
-        w[i] += (halfDt * inverseMoment[i]) * tq[i];
-        x[i] = box_.wrap(x[i] + dt * v[i]);
-        if (tracked) largest.add(normSquared(box_.minimumImage(x[i] - x0[i])));
-      }
+    auto integrate = [&](std::int64_t i, LargestTwo& largest) {
+      v[i] += (halfDt * inverseMass[i]) * f[i];
+      w[i] += (halfDt * inverseMoment[i]) * tq[i];
+      x[i] = box_.wrap(x[i] + dt * v[i]);
+      if (tracked) largest.add(normSquared(box_.minimumImage(x[i] - x0[i])));
     };
-    // Each thread takes the block of rows it swept in the last force evaluation (its particles are
-    // in its cache); the reduction is order-independent, so any split gives the same result.
+    // With a team, each thread takes the block of rows it swept in the last force evaluation (its
+    // particles are in its cache); the reduction is order-independent, so any split gives the
+    // same result.
     const std::vector<std::size_t>& blocks = buffers_.blockStart;
     const int threads = omp_get_max_threads();
-    if (threads == 1) {
-      integrate(0, n, displacement2);
-    } else if (blocks.size() == static_cast<std::size_t>(threads) + 1 && blocks.back() == static_cast<std::size_t>(n)) {
+    if (threads > 1 && blocks.size() == static_cast<std::size_t>(threads) + 1 &&
+        blocks.back() == static_cast<std::size_t>(n)) {
 #pragma omp parallel num_threads(threads) reduction(largestTwo : displacement2)
       {
         const int t = omp_get_thread_num();
-        if (omp_get_num_threads() == threads)
-          integrate(static_cast<std::int64_t>(blocks[t]), static_cast<std::int64_t>(blocks[t + 1]), displacement2);
-        else if (t == 0)
-          integrate(0, n, displacement2);
+        const bool own = omp_get_num_threads() == threads;
+        const auto begin = static_cast<std::int64_t>(own ? blocks[t] : 0);
+        const auto end = own ? static_cast<std::int64_t>(blocks[t + 1]) : (t == 0 ? n : 0);
+        for (std::int64_t i = begin; i < end; ++i) integrate(i, displacement2);
       }
     } else {
 #pragma omp parallel for schedule(static) reduction(largestTwo : displacement2)
-      for (std::int64_t i = 0; i < n; ++i) integrate(i, i + 1, displacement2);
+      for (std::int64_t i = 0; i < n; ++i) integrate(i, displacement2);
     }
   }
   time_ += dt;
