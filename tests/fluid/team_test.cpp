@@ -143,5 +143,23 @@ TEST(TeamTuner, KeepsTheFasterChoiceAndProbesTheOther) {
   EXPECT_GT(busyTeamCalls, 0);   // but still probes the team
 }
 
+TEST(TeamTuner, KeepsATeamThatIsOnlySlightlySlower) {
+  // A team within kTeamTolerance (1.3) of one thread is kept (its measured time includes waking
+  // the other threads after one-thread phases); a team 1.5 x slower is not.
+  if (TeamTuner::forcedChoice() != 0) GTEST_SKIP() << "GF_FLUID_TEAM overrides the tuner";
+  auto teamCallsOf = [](double teamSeconds, double serialSeconds) {
+    TeamTuner tuner;
+    int teamCalls = 0;
+    for (int n = 0; n < 1000; ++n) {
+      const int team = tuner.pick(2);
+      tuner.record(team, team == 2 ? teamSeconds : serialSeconds);
+      teamCalls += team == 2;
+    }
+    return teamCalls;
+  };
+  EXPECT_GT(teamCallsOf(1.2e-3, 1e-3), 960);
+  EXPECT_LT(teamCallsOf(1.5e-3, 1e-3), 40);
+}
+
 }  // namespace
 }  // namespace gf::fluid
