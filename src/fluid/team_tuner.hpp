@@ -4,8 +4,9 @@
 // idle machine a team of 2 halves the phase; on an oversubscribed one (other processes on the
 // cores) every barrier may wait for a descheduled thread and one thread is faster (measured on
 // the shared 2-core machine: 0.6 ms serial, 2.5 ms with a passive team, 46 ms with a spinning
-// one). The tuner times both and keeps the faster, probing the other now and then, less often
-// while the probes confirm the choice. Only the speed depends on it.
+// one). The tuner times both (the fastest of the recent calls of each) and keeps the team unless
+// it is clearly slower, probing the other choice now and then, less often while the probes confirm
+// the choice. Only the speed depends on it.
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
@@ -34,9 +35,15 @@ class TeamTuner {
   /// Wall seconds of a call run with `team` threads.
   void record(int team, double seconds) {
     const int s = team > 1 ? 1 : 0;
-    // Running mean over the warm-up, then exponential (recent samples count more).
-    const double w = samples_[s] < kWarmup ? 1.0 / (samples_[s] + 1) : 0.25;
-    mean_[s] += w * (seconds - mean_[s]);
+    // The fastest of the recent calls (this window and the previous one): on a shared machine
+    // single calls are slowed many times over (a preempted or sleeping thread), which would decide
+    // a mean; a machine that stays busy raises the minimum within two windows.
+    current_[s] = std::min(current_[s], seconds);
+    if (++inWindow_[s] == kWindow) {
+      previous_[s] = current_[s];
+      current_[s] = kNone;
+      inWindow_[s] = 0;
+    }
     ++samples_[s];
     if (probing_) {
       probing_ = false;
@@ -44,6 +51,8 @@ class TeamTuner {
       interval_ = confirmed ? std::min(2 * interval_, kMaxInterval) : kMinInterval;
     }
   }
+  /// Recent fastest call of one thread (0) or the team (1), seconds.
+  double estimate(int s) const { return std::min(current_[s], previous_[s]); }
   static double now() { return omp_get_wtime(); }
   /// The team is kept unless it is clearly slower than one thread (kTeamTolerance): a phase run
   /// on one thread lets the other threads go to sleep, and the next team call pays for waking
@@ -51,7 +60,9 @@ class TeamTuner {
   /// the bubbling bed (2 threads, idle machine): the plain comparison kept one thread for the
   /// pressure solve in 3 of 4 calls, 1.84 s for 0.05 s of bed against 1.55 s with the team
   /// throughout; an oversubscribed machine makes the team several times slower, still caught.
-  bool teamPreferred() const { return mean_[1] < kTeamTolerance * mean_[0]; }
+  /// Means (even with this tolerance) were decided by single slow calls over a 1 s run: the pressure
+  /// solve then took 31 s on 2 threads against 39 s on one; the recent minimum is robust to them.
+  bool teamPreferred() const { return estimate(1) < kTeamTolerance * estimate(0); }
   /// Environment override for measurements (profiles of the team on a busy machine, where the
   /// tuner would pick one thread): GF_FLUID_TEAM=team (always the team), serial (always one
   /// thread); unset or anything else: tuned. Only the speed depends on it.
@@ -66,12 +77,15 @@ class TeamTuner {
 
  private:
   static constexpr int kWarmup = 4;
-  static constexpr double kTeamTolerance = 1.3;
+  static constexpr double kTeamTolerance = 1.5;
+  static constexpr int kWindow = 8;
+  static constexpr double kNone = 1e300;
   static constexpr long kMinInterval = 64, kMaxInterval = 4096;
   long calls_ = 0, nextProbe_ = 0, interval_ = kMinInterval;
   bool probing_ = false;
   int samples_[2] = {0, 0};
-  double mean_[2] = {0.0, 0.0};
+  double current_[2] = {kNone, kNone}, previous_[2] = {kNone, kNone};
+  int inWindow_[2] = {0, 0};
 };
 
 }  // namespace gf::fluid
