@@ -77,7 +77,7 @@ class TeamTuner {
 
  private:
   static constexpr int kWarmup = 4;
-  static constexpr double kTeamTolerance = 1.5;
+  static constexpr double kTeamTolerance = 2.0;
   static constexpr int kWindow = 8;
   static constexpr double kNone = 1e300;
   static constexpr long kMinInterval = 64, kMaxInterval = 4096;
