@@ -127,6 +127,15 @@ void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool,
     auto planes = [&](int nz, int extra) {  // [k0, k1) of nz planes (+ extra face plane for the last)
       return std::pair<int, int>{nz * t / members, nz * (t + 1) / members + (t == members - 1 ? extra : 0)};
     };
+    auto diagonalOfPlanes = [&](PoissonLevel& L) {  // the diagonal of this member's planes of L
+      const auto [k0, k1] = planes(L.n[2], 0);
+      const auto lineBegin = static_cast<std::int64_t>(L.n[1]) * k0, lineEnd = static_cast<std::int64_t>(L.n[1]) * k1;
+      if (threaded) {
+        parallelFor(lineEnd - lineBegin, [&](std::int64_t l) { diagonalLines(L, dirichlet_, lineBegin + l, lineBegin + l + 1); });
+      } else {
+        diagonalLines(L, dirichlet_, lineBegin, lineEnd);
+      }
+    };
     for (int q = 0; q < 3; ++q) {
       const auto [k0, k1] = planes(F.n[2], q == 2 ? 1 : 0);
       std::array<int, 3> fn = F.n;
@@ -141,15 +150,7 @@ void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool,
       }
     }
 #pragma omp barrier
-    {
-      const auto [k0, k1] = planes(F.n[2], 0);
-      const auto lineBegin = static_cast<std::int64_t>(F.n[1]) * k0, lineEnd = static_cast<std::int64_t>(F.n[1]) * k1;
-      if (threaded) {
-        parallelFor(lineEnd - lineBegin, [&](std::int64_t l) { diagonalLines(F, dirichlet_, lineBegin + l, lineBegin + l + 1); });
-      } else {
-        diagonalLines(F, dirichlet_, lineBegin, lineEnd);
-      }
-    }
+    diagonalOfPlanes(F);
     if (twoLevels) {
       PoissonLevel& C = levels_[1];
       for (int a = 0; a < 3; ++a) {
@@ -166,13 +167,7 @@ void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool,
         }
       }
 #pragma omp barrier
-      const auto [k0, k1] = planes(C.n[2], 0);
-      const auto lineBegin = static_cast<std::int64_t>(C.n[1]) * k0, lineEnd = static_cast<std::int64_t>(C.n[1]) * k1;
-      if (threaded) {
-        parallelFor(lineEnd - lineBegin, [&](std::int64_t l) { diagonalLines(C, dirichlet_, lineBegin + l, lineBegin + l + 1); });
-      } else {
-        diagonalLines(C, dirichlet_, lineBegin, lineEnd);
-      }
+      diagonalOfPlanes(C);
     }
   };
   if (team > 1) {
