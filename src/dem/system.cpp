@@ -259,7 +259,7 @@ void System::step(double dt) {
     const Vec3* f = p.force.data();
     const Vec3* tq = p.torque.data();
     const Vec3* x0 = positionAtBuild_.data();
-    auto integrate = [&](std::int64_t i, LargestTwo& largest) {  // (the loop below, for a block)
+    auto integrate = [&](std::int64_t i, LargestTwo& largest) {
       v[i] += (halfDt * inverseMass[i]) * f[i];
       w[i] += (halfDt * inverseMoment[i]) * tq[i];
       x[i] = box_.wrap(x[i] + dt * v[i]);
@@ -282,12 +282,7 @@ void System::step(double dt) {
       }
     } else {
 #pragma omp parallel for schedule(static) reduction(largestTwo : displacement2)
-      for (std::int64_t i = 0; i < n; ++i) {
-        v[i] += (halfDt * inverseMass[i]) * f[i];
-        w[i] += (halfDt * inverseMoment[i]) * tq[i];
-        x[i] = box_.wrap(x[i] + dt * v[i]);
-        if (tracked) displacement2.add(normSquared(box_.minimumImage(x[i] - x0[i])));
-      }
+      for (std::int64_t i = 0; i < n; ++i) integrate(i, displacement2);
     }
   }
   time_ += dt;
