@@ -132,6 +132,31 @@ struct CellSortedSphere {
   Vec3 x;
   double r;
 };
+/// Appends to `out` the candidates s in [0, count) of one contiguous range that are partners of
+/// row `self`: j = sorted[s] > self and |xi - x_s| < reach + r_s (minimum image if Periodic).
+/// Returns how many; with Count, adds to `touching` how many of them touch (|xi - x_s| < radius +
+/// r_s, the distances NeighbourList::countTouching computes).
+template <bool Periodic, bool Count>
+[[gnu::always_inline]] inline std::uint32_t keepCandidates(const CellSortedSphere* spheres, const std::uint32_t* sorted,
+                                                           std::uint32_t count, const Vec3& xi, double reach,
+                                                           double radius, std::uint32_t self, const PeriodicBox& box,
+                                                           std::uint32_t* out, std::uint32_t& touching) {
+  std::uint32_t kept = 0;
+  // Branch-free (half the candidates have j <= self, at random: a branch on it mispredicts).
+  for (std::uint32_t s = 0; s < count; ++s) {
+    const std::uint32_t j = sorted[s];
+    const Vec3 dx = Periodic ? box.minimumImage(xi - spheres[s].x) : xi - spheres[s].x;
+    const double cut = reach + spheres[s].r;
+    const double distance2 = normSquared(dx);
+    out[kept] = j;
+    kept += (j > self) & (distance2 < cut * cut) ? 1u : 0u;
+    if constexpr (Count) {
+      const double rsum = radius + spheres[s].r;
+      touching += (j > self) & (distance2 < rsum * rsum) ? 1u : 0u;
+    }
+  }
+  return kept;
+}
 
 }  // namespace
 
@@ -154,6 +179,11 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
   // per-thread scratch row through a raw pointer (no per-entry capacity check, no zero fill), the
   // few kept ones sorted there by insertion and appended.
   const CellSortedSphere* spheres = sphere.data();
+  // Touching pairs per row for the force loop's split among threads (as countTouching, which a
+  // restart calls, counts them: the same distances; only teams use them).
+  const bool countingTouches = omp_get_max_threads() > 1;
+  if (countingTouches) touchingStart.assign(n + 1, 0);
+  else touchingStart.clear();
   const std::uint32_t* sorted = grid.sorted.data();
   const std::uint32_t* cellStart = grid.cellStart.data();
   auto appendPartners = [&]<bool Periodic>(std::size_t i, std::vector<std::uint32_t>& out) {
@@ -182,18 +212,18 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
     std::uint32_t* const row = scratchRow.data();
     std::uint32_t kept = 0;
     const Vec3 xi = p.position[i];
-    const double ri = p.radius[i] + skin;
+    const double radius = p.radius[i], ri = radius + skin;
     const auto self = static_cast<std::uint32_t>(i);
     const PeriodicBox localBox = box;  // (the row stores cannot change it: no reloads)
-    // Branch-free test (half the candidates have j <= i, at random: a branch on it mispredicts).
-    for (int q = 0; q < ranges; ++q)
-      for (std::uint32_t s = range[q][0]; s < range[q][1]; ++s) {
-        const std::uint32_t j = sorted[s];
-        const Vec3 dx = Periodic ? localBox.minimumImage(xi - spheres[s].x) : xi - spheres[s].x;
-        const double cut = ri + spheres[s].r;
-        row[kept] = j;
-        kept += (j > self) & (normSquared(dx) < cut * cut) ? 1u : 0u;
-      }
+    std::uint32_t touching = 0;
+    for (int q = 0; q < ranges; ++q) {
+      const std::uint32_t first = range[q][0], count = range[q][1] - first;
+      kept += countingTouches ? keepCandidates<Periodic, true>(spheres + first, sorted + first, count, xi, ri, radius,
+                                                               self, localBox, row + kept, touching)
+                              : keepCandidates<Periodic, false>(spheres + first, sorted + first, count, xi, ri, radius,
+                                                                self, localBox, row + kept, touching);
+    }
+    if (countingTouches) touchingStart[i + 1] = touching;
     for (std::uint32_t k = 1; k < kept; ++k) {  // insertion sort (a few entries)
       const std::uint32_t value = row[k];
       std::uint32_t m = k;
@@ -262,6 +292,7 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
         if (withRollingHistory) rollingHistory.assign(entries, Vec3{});
       },
       carryHistory);
+  for (std::size_t i = 0; countingTouches && i < n; ++i) touchingStart[i + 1] += touchingStart[i];
 }
 
 void NeighbourList::countTouching(const std::vector<Vec3>& positionAtBuild, const std::vector<double>& radius,

@@ -22,8 +22,8 @@ class NeighbourList {
   std::vector<Vec3> tangentialHistory;  // per entry, i's view
   std::vector<Vec3> rollingHistory;     // per entry (EPSD only, else empty)
   /// Touching pairs of rows [0, i) at the positions of the last build (size n + 1; derived, not
-  /// saved: countTouching() after build() and load(); empty on one thread). The force loop splits
-  /// its rows among threads by the work this predicts (BlockSplit).
+  /// saved: counted by build() and, after load(), by countTouching(); empty on one thread). The
+  /// force loop splits its rows among threads by the work this predicts (BlockSplit).
   std::vector<std::uint32_t> touchingStart;
 
   /// Rebuilds the list for `p`. `previousIndex[k]` is the index particle k had at the previous

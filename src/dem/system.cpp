@@ -191,7 +191,6 @@ void System::rebuild(std::vector<std::uint32_t> order, std::size_t listedRows) {
   list_.build(particles_, box_, domain_.min, domain_.max, skin_, previous, rollingHistory);
   wallList_.build(particles_, primitives_, skin_, previous, rollingHistory);
   positionAtBuild_ = particles_.position;
-  list_.countTouching(positionAtBuild_, particles_.radius, box_);
   timeAtBuild_ = time_;
   ++rebuilds_;
   // 1/m and 1/I follow the particles; unchanged when none moved in the arrays, none came or went

@@ -57,6 +57,30 @@ TEST(DemNeighbourList, MatchesBruteForceWithPeriodicBoundaries) {
   }
 }
 
+// On a team, build() counts the touching pairs of each row as it lists them; countTouching() (a
+// restart's count) gives the same numbers, periodic or not.
+TEST(DemNeighbourList, BuildCountsTouchingPairsAsCountTouching) {
+  const int threadsBefore = threadCount();
+  setThreadCount(2);
+  for (bool periodic : {false, true}) {
+    Domain d;
+    d.min = {0, 0, 0};
+    d.max = {0.012, 0.01, 0.02};
+    d.periodic = {periodic, periodic, false};
+    const PeriodicBox box(d);
+    const ParticleSet p = randomParticles(3000, d.max, 5);
+    NeighbourList list;
+    list.build(p, box, d.min, d.max, 0.0003, {}, false);
+    const std::vector<std::uint32_t> counted = list.touchingStart;
+    ASSERT_EQ(counted.size(), p.size() + 1);
+    list.countTouching(p.position, p.radius, box);
+    EXPECT_EQ(counted, list.touchingStart) << "periodic=" << periodic;
+    EXPECT_GT(counted.back(), 500u);                  // overlapping random spheres touch
+    EXPECT_LT(counted.back(), list.entries());        // and not every listed pair does
+  }
+  setThreadCount(threadsBefore);
+}
+
 TEST(DemNeighbourList, HistorySurvivesReorderingRemovalAndInsertion) {
   Domain d;
   d.min = {0, 0, 0};
