@@ -117,10 +117,23 @@ std::vector<std::uint32_t> mortonOrder(const std::vector<Vec3>& x, const Vec3& b
     }
     key[i] = k;
   });
-  std::vector<std::uint32_t> order(n);
+  // Stable LSD radix sort of the indices by key, 8 bits a pass over the bits any key uses (3 x 8
+  // bits for up to 256 cells per axis): ties stay in index order, the order a comparison sort by
+  // (key, index) gives, in O(n) per pass instead of O(n log n) comparisons.
+  std::uint64_t used = 0;
+  for (std::size_t i = 0; i < n; ++i) used |= key[i];
+  std::vector<std::uint32_t> order(n), next(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
-  std::sort(order.begin(), order.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
+  for (int shift = 0; shift < 64 && (used >> shift) != 0; shift += 8) {
+    std::uint32_t start[257] = {};
+    for (std::size_t i = 0; i < n; ++i) ++start[((key[i] >> shift) & 0xff) + 1];
+    for (int b = 0; b < 256; ++b) start[b + 1] += start[b];
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t i = order[k];
+      next[start[(key[i] >> shift) & 0xff]++] = i;
+    }
+    order.swap(next);
+  }
   return order;
 }
 

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <numbers>
 #include <set>
@@ -79,6 +80,30 @@ TEST(DemNeighbourList, BuildCountsTouchingPairsAsCountTouching) {
     EXPECT_LT(counted.back(), list.entries());        // and not every listed pair does
   }
   setThreadCount(threadsBefore);
+}
+
+// Morton order: by the interleaved cell bits, ties (particles in one cell) by index; the same
+// order as a comparison sort of (key, index), also for keys of many bits (a tall box of 2^11
+// cells along z).
+TEST(DemNeighbourList, MortonOrderSortsByKeyThenIndex) {
+  const Vec3 lo{0, 0, 0}, hi{0.01, 0.01, 2.048};
+  Random rng(9);
+  std::vector<Vec3> x(5000);
+  for (Vec3& v : x) v = {rng.uniform(0, hi.x), rng.uniform(0, hi.y), rng.uniform(0, hi.z)};
+  for (int k = 0; k < 50; ++k) x[100 + k] = x[7];  // ties
+  const double h = 0.001;
+  std::vector<std::uint64_t> key(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      const auto c = static_cast<std::uint64_t>(std::floor((x[i][a] - lo[a]) / h));
+      for (int bit = 0; bit < 21; ++bit) key[i] |= ((c >> bit) & 1u) << (3 * bit + a);
+    }
+  std::vector<std::uint32_t> expected(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) expected[i] = static_cast<std::uint32_t>(i);
+  std::sort(expected.begin(), expected.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
+  EXPECT_EQ(mortonOrder(x, lo, hi, h), expected);
+  EXPECT_GT(*std::max_element(key.begin(), key.end()), std::uint64_t{1} << 32);  // passes beyond 32 bits
 }
 
 TEST(DemNeighbourList, HistorySurvivesReorderingRemovalAndInsertion) {
