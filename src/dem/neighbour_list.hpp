@@ -45,43 +45,50 @@ class NeighbourList {
   void load(BinaryReader& in);
 
  private:
-  std::vector<std::vector<std::uint32_t>> scratch_;  // per-thread row buffers of build()
+  std::vector<std::vector<std::uint32_t>> scratch_;  // chunk buffers of build()
 };
 
-/// Compressed rows in one pass over the rows (no separate count pass): each thread appends the
-/// entries of its static block of rows to its own buffer (`rowEntries(i, buffer)` appends row i's
-/// entries and may reorder them in place), the row starts follow from the counts,
-/// `allocate(total)` sizes the caller's per-entry arrays (once, on one thread), and each thread
-/// copies its block into place and calls `finishRow(i)` for its rows. The rows do not depend on
-/// the thread count. `scratch` keeps the per-thread buffers between builds.
+/// Compressed rows in one pass over the rows (no separate count pass): the rows are cut into
+/// chunks that the threads take as they finish one (a row's cost varies along the array: the
+/// dense and the dilute parts of a bed lie in different halves of a Morton order); each chunk
+/// appends its rows' entries to its own buffer (`rowEntries(i, buffer)` appends row i's entries
+/// and may reorder them in place), the row starts follow from the counts, `allocate(total)`
+/// sizes the caller's per-entry arrays (once, on one thread), and the chunks are copied into
+/// place, `finishRow(i)` called for each of their rows. The result does not depend on the thread
+/// count or on which thread took a chunk. `scratch` keeps the chunk buffers between builds.
 template <class T, class RowEntries, class Allocate, class FinishRow>
 void buildCompressedRows(std::size_t n, std::vector<std::vector<T>>& scratch, std::vector<std::uint32_t>& rowStart,
                          std::vector<T>& entries, RowEntries&& rowEntries, Allocate&& allocate, FinishRow&& finishRow) {
   rowStart.assign(n + 1, 0);
   const int threads = static_cast<std::int64_t>(n) >= 512 ? omp_get_max_threads() : 1;  // kMinParallelLoop
-  if (static_cast<int>(scratch.size()) < threads) scratch.resize(threads);
+  const std::int64_t chunks = threads > 1 ? 8 * threads : 1;
+  if (static_cast<std::int64_t>(scratch.size()) < chunks) scratch.resize(chunks);
+  auto chunkBegin = [&](std::int64_t c) { return n * static_cast<std::size_t>(c) / static_cast<std::size_t>(chunks); };
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
-    const int t = omp_get_thread_num(), team = omp_get_num_threads();
-    const std::size_t chunk = n / team, extra = n % team;
-    const std::size_t begin = t * chunk + std::min<std::size_t>(t, extra);
-    const std::size_t end = begin + chunk + (static_cast<std::size_t>(t) < extra ? 1 : 0);
-    std::vector<T>& buffer = scratch[t];
-    buffer.clear();
-    for (std::size_t i = begin; i < end; ++i) {
-      const std::size_t before = buffer.size();
-      rowEntries(i, buffer);
-      rowStart[i + 1] = static_cast<std::uint32_t>(buffer.size() - before);
-    }
-#pragma omp barrier
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t c = 0; c < chunks; ++c) {
+      std::vector<T>& buffer = scratch[c];
+      buffer.clear();
+      for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i) {
+        const std::size_t before = buffer.size();
+        rowEntries(i, buffer);
+        rowStart[i + 1] = static_cast<std::uint32_t>(buffer.size() - before);
+      }
+    }  // implicit barrier
 #pragma omp single
     {
       for (std::size_t i = 0; i < n; ++i) rowStart[i + 1] += rowStart[i];
       entries.resize(rowStart[n]);
       allocate(static_cast<std::size_t>(rowStart[n]));
     }  // implicit barrier
-    std::copy(buffer.begin(), buffer.end(), entries.begin() + rowStart[begin]);
-    for (std::size_t i = begin; i < end; ++i) finishRow(i);
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t c = 0; c < chunks; ++c) {
+      const std::vector<T>& buffer = scratch[c];
+      const std::size_t begin = chunkBegin(c), end = chunkBegin(c + 1);
+      std::copy(buffer.begin(), buffer.end(), entries.begin() + rowStart[begin]);
+      for (std::size_t i = begin; i < end; ++i) finishRow(i);
+    }
   }
 }
 

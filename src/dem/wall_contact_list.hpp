@@ -33,7 +33,7 @@ class WallContactList {
   void load(BinaryReader& in);
 
  private:
-  std::vector<std::vector<std::uint32_t>> scratch_;  // per-thread row buffers of build()
+  std::vector<std::vector<std::uint32_t>> scratch_;  // chunk buffers of build()
 };
 
 }  // namespace gf::dem
