@@ -1,13 +1,113 @@
 #include "dem/wall_contact_list.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
 #include "dem/neighbour_list.hpp"
 
 namespace gf::dem {
+
+namespace {
+
+/// Triangles of meshes binned on a uniform grid by their bounding boxes grown by the largest
+/// reach (radius + skin): a sphere within reach of a triangle lies in a bin that lists it, so a
+/// particle tests the triangles of its bin instead of every triangle (O(n) instead of O(n x
+/// triangles) per build). The other primitives (planes, cylinders, cones) are tested by every
+/// particle. Every list ascends, so a particle's entries come in primitive order either way.
+class TriangleBins {
+ public:
+  static constexpr std::size_t kMinTriangles = 32;  // fewer: every particle tests every primitive
+
+  /// False (and no bins) if the primitives hold fewer than kMinTriangles triangles.
+  bool build(const std::vector<WallPrimitive>& primitives, double reach) {
+    others_.clear();
+    std::vector<std::uint32_t> triangles;
+    for (std::uint32_t w = 0; w < primitives.size(); ++w)
+      (primitives[w].kind == PrimitiveKind::Triangle ? triangles : others_).push_back(w);
+    if (triangles.size() < kMinTriangles) return false;
+    auto boundsOf = [&](const WallPrimitive& t, Vec3& lo, Vec3& hi) {
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::min({t.a[a], t.b[a], t.c[a]}) - reach;
+        hi[a] = std::max({t.a[a], t.b[a], t.c[a]}) + reach;
+      }
+    };
+    Vec3 lo, hi, tlo, thi;
+    double meanSize = 0.0;
+    boundsOf(primitives[triangles[0]], lo, hi);
+    for (std::uint32_t w : triangles) {
+      boundsOf(primitives[w], tlo, thi);
+      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], tlo[a]), hi[a] = std::max(hi[a], thi[a]);
+      meanSize += std::max({thi.x - tlo.x, thi.y - tlo.y, thi.z - tlo.z});
+    }
+    meanSize /= static_cast<double>(triangles.size());
+    // Bins about a grown triangle wide, at most a few per triangle.
+    double h = meanSize;
+    const double maxBins = 4.0 * static_cast<double>(triangles.size()) + 4096.0;
+    auto count = [&](int a) { return std::max(1.0, std::ceil((hi[a] - lo[a]) / h)); };
+    while (count(0) * count(1) * count(2) > maxBins) h *= 1.26;
+    origin_ = lo;
+    for (int a = 0; a < 3; ++a) dims_[a] = static_cast<int>(count(a));
+    width_ = h;
+    upper_ = hi;
+    // Two passes (count, fill) in ascending triangle order: each bin's list ascends.
+    start_.assign(static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2] + 1, 0);
+    for (int pass = 0; pass < 2; ++pass) {
+      if (pass == 1) {
+        for (std::size_t b = 1; b < start_.size(); ++b) start_[b] += start_[b - 1];
+        entries_.resize(start_.back());
+        fill_.assign(start_.begin(), start_.end() - 1);
+      }
+      for (std::uint32_t w : triangles) {
+        boundsOf(primitives[w], tlo, thi);
+        int c0[3], c1[3];
+        cellOf(tlo, c0);
+        cellOf(thi, c1);
+        for (int k = c0[2]; k <= c1[2]; ++k)
+          for (int j = c0[1]; j <= c1[1]; ++j)
+            for (int i = c0[0]; i <= c1[0]; ++i) {
+              const std::size_t b = (static_cast<std::size_t>(k) * dims_[1] + j) * dims_[0] + i;
+              if (pass == 0) ++start_[b + 1];
+              else entries_[fill_[b]++] = w;
+            }
+      }
+    }
+    return true;
+  }
+
+  const std::vector<std::uint32_t>& others() const { return others_; }
+
+  /// The triangles of the bin holding x (none outside the grown bounds of every triangle).
+  std::pair<const std::uint32_t*, const std::uint32_t*> trianglesNear(const Vec3& x) const {
+    for (int a = 0; a < 3; ++a)
+      if (!(x[a] >= origin_[a] && x[a] <= upper_[a])) return {nullptr, nullptr};
+    int c[3];
+    cellOf(x, c);
+    const std::size_t b = (static_cast<std::size_t>(c[2]) * dims_[1] + c[1]) * dims_[0] + c[0];
+    return {entries_.data() + start_[b], entries_.data() + start_[b + 1]};
+  }
+
+ private:
+  void cellOf(const Vec3& x, int c[3]) const {
+    for (int a = 0; a < 3; ++a)
+      c[a] = std::clamp(static_cast<int>(std::floor((x[a] - origin_[a]) / width_)), 0, dims_[a] - 1);
+  }
+  Vec3 origin_, upper_;
+  double width_ = 1.0;
+  int dims_[3] = {1, 1, 1};
+  std::vector<std::uint32_t> start_, entries_, fill_, others_;
+};
+
+}  // namespace
 
 void WallContactList::build(const ParticleSet& p, const std::vector<WallPrimitive>& primitives, double skin,
                             const std::vector<std::int64_t>& previousIndex, bool withRollingHistory) {
   const std::size_t n = p.size();
   const std::uint32_t np = static_cast<std::uint32_t>(primitives.size());
+  double maxRadius = 0.0;
+  for (double r : p.radius) maxRadius = std::max(maxRadius, r);
+  TriangleBins bins;
+  const bool binned = bins.build(primitives, maxRadius + skin);
   std::vector<std::uint32_t> oldStart = std::move(rowStart);
   std::vector<std::uint32_t> oldPrimitive = std::move(primitive);
   std::vector<Vec3> oldTangential = std::move(tangentialHistory);
@@ -19,12 +119,21 @@ void WallContactList::build(const ParticleSet& p, const std::vector<WallPrimitiv
       [&](std::size_t i, std::vector<std::uint32_t>& out) {
         const Vec3 x = p.position[i];
         const double reach = p.radius[i] + skin;
-        for (std::uint32_t w = 0; w < np; ++w) {
+        auto test = [&](std::uint32_t w) {
           const WallPrimitive& prim = primitives[w];
           // planes inline (the common box and distributor walls), the same value as distanceToPrimitive
           const double d = prim.kind == PrimitiveKind::Plane ? dot(x - prim.a, prim.b) : distanceToPrimitive(prim, x).distance;
           if (d < reach) out.push_back(w);
+        };
+        if (!binned) {
+          for (std::uint32_t w = 0; w < np; ++w) test(w);
+          return;
         }
+        // the other primitives and the triangles of x's bin, merged in ascending order
+        const std::uint32_t *other = bins.others().data(), *otherEnd = other + bins.others().size();
+        auto [triangle, triangleEnd] = bins.trianglesNear(x);
+        while (other != otherEnd || triangle != triangleEnd)
+          test(triangle == triangleEnd || (other != otherEnd && *other < *triangle) ? *other++ : *triangle++);
       },
       [&](std::size_t m) {
         tangentialHistory.assign(m, Vec3{});

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <numbers>
 
+#include "dem/wall_contact_list.hpp"
 #include "dem_test_util.hpp"
 
 namespace gf::dem::test {
@@ -118,6 +119,55 @@ TEST(DemMeshContact, SphereInConcaveGrooveKeepsBothFaceContacts) {
   // Each face carries m g / sqrt(2) along its normal: overlap from Hertz with that load.
   const double overlap = restingOverlap() * std::pow(1.0 / std::sqrt(2.0), 2.0 / 3.0);
   EXPECT_NEAR(kRadius * std::sqrt(2.0) - r.position.z, std::sqrt(2.0) * overlap, 0.02 * std::sqrt(2.0) * overlap);
+}
+
+// Wall contact lists of a mesh of many triangles (binned, TriangleBins in wall_contact_list.cpp)
+// hold the entries a test of every primitive by every particle gives, in the same order: a
+// wavy floor of 3200 triangles, a plane beside it, spheres of two sizes above, below and around
+// the mesh (some outside its bounds).
+TEST(DemMeshContact, BinnedMeshWallListEqualsTestingEveryTriangle) {
+  std::vector<WallPrimitive> primitives;
+  const int cells = 40;
+  const double size = 0.04, h = size / cells;
+  auto floor = [&](int i, int j) {
+    const double x = i * h, y = j * h;
+    return Vec3{x, y, 0.004 + 0.002 * std::sin(300.0 * x) * std::cos(200.0 * y)};
+  };
+  WallPrimitive plane;
+  plane.kind = PrimitiveKind::Plane;
+  plane.a = {0.02, 0, 0};
+  plane.b = {-1, 0, 0};  // x = 0.02, facing -x (mid-mesh: entries from both lists interleave)
+  for (int j = 0; j < cells; ++j)
+    for (int i = 0; i < cells; ++i) {
+      if (i == cells / 2 && j == cells / 2) primitives.push_back(plane);
+      WallPrimitive t;
+      t.kind = PrimitiveKind::Triangle;
+      t.a = floor(i, j), t.b = floor(i + 1, j), t.c = floor(i + 1, j + 1);
+      primitives.push_back(t);
+      t.b = floor(i + 1, j + 1), t.c = floor(i, j + 1);
+      primitives.push_back(t);
+    }
+  ParticleSet p;
+  Random rng(4);
+  for (int k = 0; k < 4000; ++k)
+    p.add(k, 0, k % 2 ? 0.0005 : 0.001, 2500,
+          {rng.uniform(-0.005, 0.045), rng.uniform(-0.005, 0.045), rng.uniform(0.0, 0.01)});
+  const double skin = 0.0002;
+  WallContactList list;
+  list.build(p, primitives, skin, {}, false);
+  std::vector<std::uint32_t> expectedStart{0}, expected;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::uint32_t w = 0; w < primitives.size(); ++w) {
+      const WallPrimitive& prim = primitives[w];
+      const double d = prim.kind == PrimitiveKind::Plane ? dot(p.position[i] - prim.a, prim.b)
+                                                         : distanceToPrimitive(prim, p.position[i]).distance;
+      if (d < p.radius[i] + skin) expected.push_back(w);
+    }
+    expectedStart.push_back(static_cast<std::uint32_t>(expected.size()));
+  }
+  EXPECT_EQ(list.rowStart, expectedStart);
+  EXPECT_EQ(list.primitive, expected);
+  EXPECT_GT(expected.size(), 4000u);  // spheres near the floor touch several triangles
 }
 
 }  // namespace gf::dem::test
