@@ -145,6 +145,7 @@ struct CellSortedSphere {
   Vec3 x;
   double r;
 };
+
 /// Appends to `out` the candidates s in [0, count) of one contiguous range that are partners of
 /// row `self`: j = sorted[s] > self and |xi - x_s| < reach + r_s (minimum image if Periodic).
 /// Returns how many; with Count, adds to `touching` how many of them touch (|xi - x_s| < radius +

@@ -19,13 +19,17 @@ class TriangleBins {
  public:
   static constexpr std::size_t kMinTriangles = 32;  // fewer: every particle tests every primitive
 
-  /// False (and no bins) if the primitives hold fewer than kMinTriangles triangles.
-  bool build(const std::vector<WallPrimitive>& primitives, double reach) {
+  /// False (and no bins) if the primitives hold fewer than kMinTriangles triangles. The reach is
+  /// the largest radius + skin.
+  bool build(const std::vector<WallPrimitive>& primitives, const std::vector<double>& radius, double skin) {
     others_.clear();
     std::vector<std::uint32_t> triangles;
     for (std::uint32_t w = 0; w < primitives.size(); ++w)
       (primitives[w].kind == PrimitiveKind::Triangle ? triangles : others_).push_back(w);
     if (triangles.size() < kMinTriangles) return false;
+    double reach = 0.0;
+    for (double r : radius) reach = std::max(reach, r);
+    reach += skin;
     auto boundsOf = [&](const WallPrimitive& t, Vec3& lo, Vec3& hi) {
       for (int a = 0; a < 3; ++a) {
         lo[a] = std::min({t.a[a], t.b[a], t.c[a]}) - reach;
@@ -104,10 +108,8 @@ void WallContactList::build(const ParticleSet& p, const std::vector<WallPrimitiv
                             const std::vector<std::int64_t>& previousIndex, bool withRollingHistory) {
   const std::size_t n = p.size();
   const std::uint32_t np = static_cast<std::uint32_t>(primitives.size());
-  double maxRadius = 0.0;
-  for (double r : p.radius) maxRadius = std::max(maxRadius, r);
   TriangleBins bins;
-  const bool binned = bins.build(primitives, maxRadius + skin);
+  const bool binned = bins.build(primitives, p.radius, skin);
   std::vector<std::uint32_t> oldStart = std::move(rowStart);
   std::vector<std::uint32_t> oldPrimitive = std::move(primitive);
   std::vector<Vec3> oldTangential = std::move(tangentialHistory);
