@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -36,12 +37,18 @@ std::set<std::pair<std::int64_t, std::int64_t>> listPairs(const NeighbourList& l
   return out;
 }
 
+// The 12 x 10 x 20 mm box of the list tests, periodic along the given axes.
+Domain listTestBox(std::array<bool, 3> periodic) {
+  Domain d;
+  d.min = {0, 0, 0};
+  d.max = {0.012, 0.01, 0.02};
+  d.periodic = periodic;
+  return d;
+}
+
 TEST(DemNeighbourList, MatchesBruteForceWithPeriodicBoundaries) {
   for (bool periodic : {false, true}) {
-    Domain d;
-    d.min = {0, 0, 0};
-    d.max = {0.012, 0.01, 0.02};
-    d.periodic = {periodic, false, periodic};
+    const Domain d = listTestBox({periodic, false, periodic});
     const PeriodicBox box(d);
     const ParticleSet p = randomParticles(600, d.max, 7);
     const double skin = 0.0003;
@@ -61,25 +68,21 @@ TEST(DemNeighbourList, MatchesBruteForceWithPeriodicBoundaries) {
 // On a team, build() counts the touching pairs of each row as it lists them; countTouching() (a
 // restart's count) gives the same numbers, periodic or not.
 TEST(DemNeighbourList, BuildCountsTouchingPairsAsCountTouching) {
-  const int threadsBefore = threadCount();
   setThreadCount(2);
   for (bool periodic : {false, true}) {
-    Domain d;
-    d.min = {0, 0, 0};
-    d.max = {0.012, 0.01, 0.02};
-    d.periodic = {periodic, periodic, false};
+    const Domain d = listTestBox({periodic, periodic, false});
     const PeriodicBox box(d);
     const ParticleSet p = randomParticles(3000, d.max, 5);
     NeighbourList list;
     list.build(p, box, d.min, d.max, 0.0003, {}, false);
     const std::vector<std::uint32_t> counted = list.touchingStart;
-    ASSERT_EQ(counted.size(), p.size() + 1);
+    EXPECT_EQ(counted.size(), p.size() + 1);
     list.countTouching(p.position, p.radius, box);
     EXPECT_EQ(counted, list.touchingStart) << "periodic=" << periodic;
     EXPECT_GT(counted.back(), 500u);                  // overlapping random spheres touch
     EXPECT_LT(counted.back(), list.entries());        // and not every listed pair does
   }
-  setThreadCount(threadsBefore);
+  setThreadCount(1);
 }
 
 // Morton order: by the interleaved cell bits, ties (particles in one cell) by index; the same
