@@ -56,11 +56,12 @@ class TriangleBins {
     upper_ = hi;
     // Two passes (count, fill) in ascending triangle order: each bin's list ascends.
     start_.assign(static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2] + 1, 0);
+    std::vector<std::uint32_t> fill;  // next free entry of each bin (fill pass)
     for (int pass = 0; pass < 2; ++pass) {
       if (pass == 1) {
         for (std::size_t b = 1; b < start_.size(); ++b) start_[b] += start_[b - 1];
         entries_.resize(start_.back());
-        fill_.assign(start_.begin(), start_.end() - 1);
+        fill.assign(start_.begin(), start_.end() - 1);
       }
       for (std::uint32_t w : triangles) {
         boundsOf(primitives[w], tlo, thi);
@@ -72,7 +73,7 @@ class TriangleBins {
             for (int i = c0[0]; i <= c1[0]; ++i) {
               const std::size_t b = (static_cast<std::size_t>(k) * dims_[1] + j) * dims_[0] + i;
               if (pass == 0) ++start_[b + 1];
-              else entries_[fill_[b]++] = w;
+              else entries_[fill[b]++] = w;
             }
       }
     }
@@ -99,7 +100,7 @@ class TriangleBins {
   Vec3 origin_, upper_;
   double width_ = 1.0;
   int dims_[3] = {1, 1, 1};
-  std::vector<std::uint32_t> start_, entries_, fill_, others_;
+  std::vector<std::uint32_t> start_, entries_, others_;
 };
 
 }  // namespace
