@@ -52,6 +52,7 @@ int commandRun(const std::string& caseFile, const RunOptions& options) {
   std::fflush(stdout);
   const auto start = std::chrono::steady_clock::now();
   const double startTime = simulation->time();
+  const long long startSteps = simulation->dem().steps(), startRebuilds = simulation->dem().rebuilds();
   RunStatus status;
   try {
     status = simulation->run();
@@ -70,6 +71,11 @@ int commandRun(const std::string& caseFile, const RunOptions& options) {
   }
   if (!options.quiet) {
     std::printf("\n%s", simulation->timingTable(wall, simulation->time() - startTime).c_str());
+    const long long steps = simulation->dem().steps() - startSteps;
+    const long long rebuilds = simulation->dem().rebuilds() - startRebuilds;
+    if (steps > 0)  // (as LAMMPS' "Neighbor list builds"): the displacement criterion's rate
+      std::printf("neighbour lists    %lld builds in %lld DEM steps (every %.1f steps)\n", rebuilds, steps,
+                  rebuilds > 0 ? static_cast<double>(steps) / static_cast<double>(rebuilds) : 0.0);
     std::printf("\noutput written to %s/\n", s.outputDirectory.c_str());
     if (s.outputInterval > 0.0 && s.writeParticles)
       std::printf("view it in ParaView: paraview %s/particles.pvd  (Glyph filter, scale by 'radius' x2, sphere glyphs)\n",

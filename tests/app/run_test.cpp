@@ -2,6 +2,7 @@
 // interruption with checkpoint, output layout.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 
 #include "io/csv_series.hpp"
@@ -50,6 +51,24 @@ TEST(Run, SameInputSameThreadsSameResult) {
   ASSERT_EQ(grainflow("run " + file + " --quiet --threads 2 --end-time 0.01 --output " + dir.file("a")).exitCode, 0);
   ASSERT_EQ(grainflow("run " + file + " --quiet --threads 2 --end-time 0.01 --output " + dir.file("b")).exitCode, 0);
   EXPECT_EQ(readAll(dir.file("a/checkpoint.bin")), readAll(dir.file("b/checkpoint.bin")));
+}
+
+TEST(Run, ReportsNeighbourListBuildsOfTheRun) {
+  TempDir dir;
+  const std::string file = dir.write("case.yaml", kCase);
+  ASSERT_EQ(grainflow("run " + file + " --quiet --end-time 0.02 --output " + dir.file("o")).exitCode, 0);
+  // The continued run reports its own steps (0.02 s -> 0.04 s at 2e-5 s: 1000), not the total.
+  const auto r = grainflow("run " + file + " --output " + dir.file("o") + " --restart " + dir.file("o/checkpoint.bin"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const std::size_t at = r.output.find("neighbour lists");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  long long builds = -1, steps = -1;
+  ASSERT_EQ(std::sscanf(r.output.c_str() + at, "neighbour lists %lld builds in %lld DEM steps", &builds, &steps), 2);
+  EXPECT_EQ(steps, 1000);
+  // The lattice falls at >= 0.1 m/s: 2 mm in 0.02 s, five skins (0.1 d = 0.4 mm), so the lists
+  // are rebuilt, but far from every step.
+  EXPECT_GE(builds, 3);
+  EXPECT_LT(builds, 200);
 }
 
 TEST(Run, WritesParaViewSeriesWithPhysicalTimes) {
