@@ -40,17 +40,21 @@ void CellGrid::build(const std::vector<Vec3>& x, const Vec3& boxMin, const Vec3&
       width[0] = size.x / dims[0];  // >= h / split
     }
   }
-  cellStart.assign(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] + 1, 0);
+  const std::size_t cells = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+  cellStart.assign(cells + 1, 0);
   cellOf.resize(n);
   parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t i) {
     int c[3];
     cellOf[i] = static_cast<std::uint32_t>(cellIndex(x[i], c));
   });
-  for (std::size_t i = 0; i < n; ++i) ++cellStart[cellOf[i] + 1];
-  for (std::size_t c = 1; c < cellStart.size(); ++c) cellStart[c] += cellStart[c - 1];
+  // Counting sort in place (no copy of the cell starts as fill cursors): count into cell c's own
+  // slot, inclusive prefix sum (slot c: end of cell c), then place the particles backwards with
+  // --slot, which leaves slot c at the start of cell c and each cell ascending.
+  for (std::size_t i = 0; i < n; ++i) ++cellStart[cellOf[i]];
+  for (std::size_t c = 1; c < cells; ++c) cellStart[c] += cellStart[c - 1];
+  cellStart[cells] = static_cast<std::uint32_t>(n);
   sorted.resize(n);
-  std::vector<std::uint32_t> fill(cellStart.begin(), cellStart.end() - 1);
-  for (std::size_t i = 0; i < n; ++i) sorted[fill[cellOf[i]]++] = static_cast<std::uint32_t>(i);
+  for (std::size_t i = n; i-- > 0;) sorted[--cellStart[cellOf[i]]] = static_cast<std::uint32_t>(i);
 }
 
 namespace {
@@ -305,7 +309,10 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
         tangentialHistory.assign(entries, Vec3{});
         if (withRollingHistory) rollingHistory.assign(entries, Vec3{});
       },
-      carryHistory);
+      carryHistory,
+      // a row's cost follows its candidates; the previous build's entries per row estimate them
+      // (when the rows are the same particles)
+      sameIndices && oldStart.size() == n + 1 ? oldStart.data() : nullptr);
   for (std::size_t i = 0; countingTouches && i < n; ++i) touchingStart[i + 1] += touchingStart[i];
 }
 
