@@ -272,11 +272,13 @@ void Simulation::advance() {
   if (fluid_) fluid_->step(fluidStep());
   if (coupler_) {
     ScopedPhase timer(appTimers_, Phase::Coupling);
+    coupler_->setParticleBlocks(dem_->threadBlocks());  // each thread on the particles it moves
     coupler_->computeParticleForces(fluidView(), fluid_->couplingFields(), dem_->particles());
   }
   for (int s = 0; s < settings_.demStepsPerCouplingStep; ++s) dem_->step(settings_.demStep);
   if (coupler_) {
     ScopedPhase timer(appTimers_, Phase::Coupling);
+    coupler_->setParticleBlocks(dem_->threadBlocks());  // (the DEM steps may have rebuilt the lists)
     coupler_->computeVoidFraction(dem_->particles(), fluid_->couplingFields());
     coupler_->fillFluidSources(dem_->particles(), fluid_->couplingFields());
   }

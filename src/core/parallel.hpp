@@ -4,6 +4,8 @@
 // the assignment of indices to threads fixed, so results are reproducible for a thread count.
 #include <cstddef>
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 #include <omp.h>
 
@@ -34,6 +36,20 @@ inline double parallelSum(std::int64_t n, Body&& body) {
   double total = 0.0;
   for (double p : partial) total += p;
   return total;
+}
+
+/// Thread t's block [first, second) of [0, n) in a team of `team`: `blocks` when it is a split for
+/// this team (size team + 1, blocks[team] == n: e.g. the DEM's split of the particles by contact
+/// work, so that a particle's data stay in the cache of the core that moved it), else the static
+/// block schedule(static) would give. Deterministic for a split and a team.
+inline std::pair<std::int64_t, std::int64_t> threadBlock(std::int64_t n, int t, int team,
+                                                         const std::vector<std::size_t>* blocks) {
+  if (blocks && blocks->size() == static_cast<std::size_t>(team) + 1 &&
+      (*blocks)[team] == static_cast<std::size_t>(n))
+    return {static_cast<std::int64_t>((*blocks)[t]), static_cast<std::int64_t>((*blocks)[t + 1])};
+  const std::int64_t chunk = n / team, extra = n % team;
+  const std::int64_t begin = t * chunk + (t < extra ? t : extra);
+  return {begin, begin + chunk + (t < extra ? 1 : 0)};
 }
 
 inline int threadCount() { return omp_get_max_threads(); }

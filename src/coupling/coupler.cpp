@@ -398,7 +398,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   particleForceSums_ = sumsOverRanges<4>(n, [&](std::int64_t begin, std::int64_t end, std::array<double, 4>& sum) {
     for (std::int64_t p = begin; p < end; p += kBlock)
       forceBlock(static_cast<std::size_t>(p), static_cast<int>(std::min<std::int64_t>(kBlock, end - p)), sum);
-  });
+  }, &particleBlocks_);
   particleForceSumsValid_ = true;
 }
 
@@ -627,7 +627,7 @@ void Coupler::updateMomentumBalance(const CouplingFields& fields, bool implicit)
               const Vec3 f = force::drag(beta_[p], slip_[p]) + otherExchangedForce_[p];
               sum[0] += f.x, sum[1] += f.y, sum[2] += f.z;
               sum[3] += norm(f);
-            });
+            }, &particleBlocks_);
   const Vec3 onParticles{sums[0], sums[1], sums[2]};
   Vec3 onFluid{};
   exchangedForceScale_ = sums[3];

@@ -89,6 +89,15 @@ class Coupler {
   void fillFluidSources(const dem::ParticleSet& particles, CouplingFields& fields);
   /// Same, when the particle set is unchanged (same order) since computeParticleForces.
   void fillFluidSources(CouplingFields& fields);
+  /// Particles per thread for the particle loops that follow (dem::System::threadBlocks: each
+  /// thread then works on the particles whose contacts it computed, in its core's cache). Empty,
+  /// or not a split of the current particles for the team: equal blocks. The sums over particles
+  /// (deposits, momentum balance) follow the split, so it must be a function of the state (as
+  /// the DEM's is) for runs to be reproducible.
+  void setParticleBlocks(const std::vector<std::size_t>& blocks) {
+    particleBlocks_ = blocks;
+    deposit_.blocks = &particleBlocks_;
+  }
 
   /// sum over particles of the forces exchanged with the fluid + sum over cells of the fluid
   /// source times cell volume (N); zero up to round-off (Newton's third law), see docs.
@@ -184,6 +193,7 @@ class Coupler {
   double exchangedForceScale_ = 0.0;
   // sum over particles of the exchanged force (x, y, z) and of its magnitude, from the force pass
   std::array<double, 4> particleForceSums_{};
+  std::vector<std::size_t> particleBlocks_;  // setParticleBlocks
   std::vector<double> volumeSums_;  // per thread, computeVoidFraction
   std::vector<std::array<double, 3>> runSums_;  // per interior row of cells (deposit_.runs)
   bool particleForceSumsValid_ = false;

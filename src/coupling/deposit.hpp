@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/parallel.hpp"
 #include "coupling/stencil.hpp"
 
 namespace gf::coupling {
@@ -35,6 +36,9 @@ struct DepositBuffers {
   /// grid with ghosts); only these are zeroed and summed, other entries of the result are
   /// undefined. Empty: all cells.
   std::vector<std::array<std::size_t, 2>> runs;
+  /// Particles per thread (threadBlock: used when it is a split of this many particles for the
+  /// team, else equal blocks). Not owned.
+  const std::vector<std::size_t>* blocks = nullptr;
 };
 
 inline constexpr std::int64_t kDepositPiece = 256;  // particles per prepare call
@@ -186,10 +190,9 @@ const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_
     std::vector<double>& buf = b.perThread[t];
     buf.resize(size);
     zero(buf.data());
-    // the static block of thread t (as schedule(static) without chunk would give it)
-    const std::int64_t chunk = n / team, extra = n % team;
-    const std::int64_t begin = t * chunk + std::min<std::int64_t>(t, extra);
-    accumulate(t, begin, begin + chunk + (t < extra ? 1 : 0), buf.data());
+    // thread t's block of the particles (b.blocks, or the static block schedule(static) gives)
+    const auto [begin, end] = threadBlock(n, t, team, b.blocks);
+    accumulate(t, begin, end, buf.data());
 #pragma omp barrier
 #pragma omp for schedule(static)
     for (std::int64_t r = 0; r < runCount; ++r)

@@ -52,7 +52,7 @@ inline double sumOverIndices(std::int64_t n, Body&& body) {
 /// pieces). On one thread (or for small n) one block [0, n); otherwise each thread sums its static
 /// block and the block sums are added in thread order (bit-identical for a given thread count).
 template <int N, class Body>
-inline std::array<double, N> sumsOverRanges(std::int64_t n, Body&& body) {
+inline std::array<double, N> sumsOverRanges(std::int64_t n, Body&& body, const std::vector<std::size_t>* blocks = nullptr) {
   std::array<double, N> total{};
   const int threads = n < kMinParallelWork ? 1 : omp_get_max_threads();
   if (threads == 1) {
@@ -63,9 +63,7 @@ inline std::array<double, N> sumsOverRanges(std::int64_t n, Body&& body) {
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num(), team = omp_get_num_threads();
-    const std::int64_t chunk = n / team, extra = n % team;
-    const std::int64_t begin = t * chunk + std::min<std::int64_t>(t, extra);
-    const std::int64_t end = begin + chunk + (t < extra ? 1 : 0);
+    const auto [begin, end] = threadBlock(n, t, team, blocks);  // (equal blocks without a split)
     std::array<double, N> local{};
     body(begin, end, local);
     partial[t] = local;
@@ -78,10 +76,13 @@ inline std::array<double, N> sumsOverRanges(std::int64_t n, Body&& body) {
 /// The same N sums index by index: body(i, sums) adds index i's terms (same blocks, same order,
 /// hence the same bits as sumsOverRanges).
 template <int N, class Body>
-inline std::array<double, N> sumsOverIndices(std::int64_t n, Body&& body) {
-  return sumsOverRanges<N>(n, [&](std::int64_t begin, std::int64_t end, std::array<double, N>& sums) {
-    for (std::int64_t i = begin; i < end; ++i) body(i, sums);
-  });
+inline std::array<double, N> sumsOverIndices(std::int64_t n, Body&& body, const std::vector<std::size_t>* blocks = nullptr) {
+  return sumsOverRanges<N>(
+      n,
+      [&](std::int64_t begin, std::int64_t end, std::array<double, N>& sums) {
+        for (std::int64_t i = begin; i < end; ++i) body(i, sums);
+      },
+      blocks);
 }
 
 /// out[i] = sqrt(in[i]) for i in [0, n), two at a time with SSE2 (IEEE square root per lane: the

@@ -198,6 +198,15 @@ void System::rebuild(std::vector<std::uint32_t> order, std::size_t listedRows) {
   if (!identity || inverseMass_.size() != particles_.size()) updateInverseInertia();
 }
 
+const std::vector<std::size_t>& System::threadBlocks() {
+  // the arguments of PartnerBuffers::prepare in contactForcesAndKick
+  const std::size_t n = particles_.size();
+  BlockSplit::compute(list_.rowStart.data(), list_.touchingStart.size() == n + 1 ? list_.touchingStart.data() : nullptr,
+                      primitives_.empty() ? nullptr : wallList_.rowStart.data(), list_.rows() == n ? n : 0,
+                      omp_get_max_threads(), threadBlocks_);
+  return threadBlocks_;
+}
+
 void System::updateInverseInertia() {
   const ParticleSet& p = particles_;
   inverseMass_.resize(p.size());

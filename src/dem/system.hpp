@@ -73,6 +73,11 @@ class System {
   double time() const { return time_; }
   long long steps() const { return steps_; }
   long long rebuilds() const { return rebuilds_; }
+  /// The split of the particles among the threads of the force loop and the integration
+  /// (BlockSplit of the current lists: size threads + 1; a pure function of the lists, restored by
+  /// a restart). Other particle loops may follow it to find the particles in the cache of the core
+  /// that last moved them.
+  const std::vector<std::size_t>& threadBlocks();
   const NeighbourList& neighbourList() const { return list_; }
   const WallContactList& wallContacts() const { return wallList_; }
   const std::vector<WallPrimitive>& wallPrimitives() const { return primitives_; }
@@ -105,6 +110,7 @@ class System {
   NeighbourList list_;
   WallContactList wallList_;
   PartnerBuffers buffers_;
+  std::vector<std::size_t> threadBlocks_;  // threadBlocks()
   std::vector<Vec3> positionAtBuild_;
   std::vector<double> inverseMass_, inverseMoment_;  // 1/m, 1/I per particle (updated with the lists)
   double timeAtBuild_ = 0.0;

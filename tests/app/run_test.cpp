@@ -45,6 +45,50 @@ TEST(Run, RestartEqualsContinuousBitForBit) {
   EXPECT_EQ(readAll(dir.file("full/particle_count.csv")), readAll(dir.file("split/particle_count.csv")));
 }
 
+// A small fluidised column (5,040 spheres: above the particle count from which the coupling's
+// particle loops run on a team), for the coupled restart.
+const std::string kCoupledCase = R"(case: {name: coupled_restart}
+domain: {min: [0, 0, 0], max: [0.01, 0.035, 0.1]}
+time: {end: 0.008, dem_step: 4.0e-6, coupling_interval: 5}
+materials: [{name: glass, density: 2526.0, youngs_modulus: 1.0e8, poisson_ratio: 0.35}]
+contact: {law: hertz_mindlin, restitution: 0.9, friction: 0.1}
+walls: [{type: box, min: [0, 0, 0], max: [0.01, 0.035, 0.1], open: [0, 0, 0, 0, 1, 1]},
+        {type: plane, point: [0, 0, 0.005], normal: [0, 0, 1]}]
+insertion:
+  - {type: lattice, material: glass, origin: [0.001, 0.0012, 0.0062], spacing: 0.0016, nx: 6, ny: 20, nz: 42,
+     diameter: 0.0015, velocity: [0.0, 0.0, -0.05]}
+fluid:
+  density: 1.2
+  viscosity: 1.8e-5
+  cells: [2, 7, 20]
+  boundaries:
+    x_min: {type: slip}
+    x_max: {type: slip}
+    y_min: {type: wall}
+    y_max: {type: wall}
+    z_min: {type: inlet, velocity: [0.0, 0.0, 1.5]}
+    z_max: {type: pressure_outlet}
+coupling: {drag_law: gidaspow, void_fraction: divided}
+monitors: [{type: coupling_balance, interval: 0.001}]
+)";
+
+TEST(Run, CoupledRestartEqualsContinuousBitForBit) {
+  // Fluid, coupling and DEM state after a restart on 2 threads equal the continuous run's (the
+  // coupling's particle loops follow the DEM's split of the particles, a function of the lists).
+  TempDir dir;
+  const std::string file = dir.write("case.yaml", kCoupledCase);
+  const auto full = grainflow("run " + file + " --quiet --threads 2 --output " + dir.file("full"));
+  ASSERT_EQ(full.exitCode, 0) << full.output;
+  ASSERT_EQ(grainflow("run " + file + " --quiet --threads 2 --end-time 0.0036 --output " + dir.file("split")).exitCode, 0);
+  const auto resumed = grainflow("run " + file + " --quiet --threads 2 --output " + dir.file("split") + " --restart " +
+                                 dir.file("split/checkpoint.bin"));
+  ASSERT_EQ(resumed.exitCode, 0) << resumed.output;
+  const std::string a = readAll(dir.file("full/checkpoint.bin"));
+  EXPECT_GT(a.size(), 100000u);
+  EXPECT_EQ(a, readAll(dir.file("split/checkpoint.bin")));
+  EXPECT_EQ(readAll(dir.file("full/coupling_balance.csv")), readAll(dir.file("split/coupling_balance.csv")));
+}
+
 TEST(Run, SameInputSameThreadsSameResult) {
   TempDir dir;
   const std::string file = dir.write("case.yaml", kCase);

@@ -331,6 +331,71 @@ TEST(FastPaths, SumsOverRangesEqualSumsOverIndicesBitForBit) {
   omp_set_num_threads(saved);
 }
 
+TEST(FastPaths, ThreadBlockTakesAFittingSplitElseEqualBlocks) {
+  const std::vector<std::size_t> split{0, 7, 10};
+  EXPECT_EQ(gf::threadBlock(10, 0, 2, &split), (std::pair<std::int64_t, std::int64_t>{0, 7}));
+  EXPECT_EQ(gf::threadBlock(10, 1, 2, &split), (std::pair<std::int64_t, std::int64_t>{7, 10}));
+  // not a split of these particles for this team: equal blocks (schedule(static))
+  EXPECT_EQ(gf::threadBlock(11, 0, 2, &split), (std::pair<std::int64_t, std::int64_t>{0, 6}));
+  EXPECT_EQ(gf::threadBlock(10, 1, 3, &split), (std::pair<std::int64_t, std::int64_t>{4, 7}));
+  EXPECT_EQ(gf::threadBlock(10, 2, 3, nullptr), (std::pair<std::int64_t, std::int64_t>{7, 10}));
+}
+
+TEST(FastPaths, SumsAndDepositsFollowTheGivenParticleSplit) {
+  // A split like the DEM's (uneven blocks): every particle summed and deposited once, on the
+  // thread whose block holds it; the results equal the equal-block ones up to round-off.
+  const CartesianGrid g = makeGrid({2, 4, 5}, {0.0075, 0.005, 0.005});
+  const dem::ParticleSet particles = randomParticles(6000, 0.00125, 0.00125, {0, 0, 0}, {0.015, 0.02, 0.025}, 37);
+  const auto scheme = makeScheme("divided");
+  const GridTopology t(g, {true, false, false});
+  ParticleStencils s;
+  scheme->buildStencils(particles, t, s);
+  const std::size_t cells = Field(g).data().size();
+  const auto n = static_cast<std::int64_t>(s.size());
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(2);
+  const std::vector<std::size_t> split{0, 4500, 6000};
+  std::vector<int> seenBy(s.size(), -1);
+  const auto sums = sumsOverRanges<1>(
+      n,
+      [&](std::int64_t begin, std::int64_t end, std::array<double, 1>& sum) {
+        for (std::int64_t p = begin; p < end; ++p) {
+          seenBy[p] = omp_get_thread_num();
+          sum[0] += particles.radius[p];
+        }
+      },
+      &split);
+  if (omp_get_max_threads() == 2) {
+    EXPECT_EQ(seenBy[4499], 0);
+    EXPECT_EQ(seenBy[4500], 1);
+  }
+  double expected = 0.0;
+  for (double r : particles.radius) expected += r;
+  EXPECT_NEAR(sums[0], expected, 1e-12 * expected);
+  auto deposit = [&](const std::vector<std::size_t>* blocks, std::vector<int>* seen) {
+    DepositBuffers b;
+    b.blocks = blocks;
+    return depositChannels<1>(
+        s, cells, b, [&](std::size_t p, double (&v)[1]) { v[0] = particles.radius[p]; },
+        [&](int thread, std::size_t begin, std::size_t end) {
+          if (seen)
+            for (std::size_t p = begin; p < end; ++p) (*seen)[p] = thread;
+        });
+  };
+  std::vector<int> depositedBy(s.size(), -1);
+  const std::vector<double> bySplit = deposit(&split, &depositedBy);
+  const std::vector<double> byEqual = deposit(nullptr, nullptr);
+  omp_set_num_threads(saved);
+  for (int who : depositedBy) ASSERT_GE(who, 0);
+  if (saved >= 2) EXPECT_EQ(depositedBy[4499], depositedBy[0]);
+  double total = 0.0;
+  for (std::size_t q = 0; q < cells; ++q) {
+    EXPECT_NEAR(bySplit[q], byEqual[q], 1e-15) << q;
+    total += bySplit[q];
+  }
+  EXPECT_NEAR(total, expected, 1e-12 * expected);  // the weights of a particle add up to 1
+}
+
 TEST(FastPaths, ViscousStressDivergenceIsTheSevenPointLaplacianBitForBit) {
   // computeViscousStressDivergence (rows, components side by side in one vector) against the
   // definition cell by cell: mu sum_a (u_hi - 2 u_c + u_lo) / h_a^2, the neighbour across a wall
