@@ -87,6 +87,14 @@ struct BlockSplit {
   }
 };
 
+/// BlockSplit of the rows of `list` (and of the wall entries, with walls) for a team: the split
+/// the force loop uses (a function of the lists).
+inline void splitRowsAmongThreads(const NeighbourList& list, const WallContactList& wallList, bool withWalls,
+                                  std::size_t n, int team, std::vector<std::size_t>& start) {
+  BlockSplit::compute(list.rowStart.data(), list.touchingStart.size() == n + 1 ? list.touchingStart.data() : nullptr,
+                      withWalls ? wallList.rowStart.data() : nullptr, n, team, start);
+}
+
 /// Per-thread partner force buffers (threads 0..T-2) and the blocks of rows. Thread t's rows end
 /// at end_t = blockStart[t + 1] and only partners j >= end_t go to its buffer, so it holds indices
 /// [end_t, n) (entry j - end_t). The buffers are all zero between force evaluations.
@@ -95,9 +103,8 @@ struct PartnerBuffers {
   std::vector<std::uint32_t> lo, hi;  // touched range per thread (particle indices)
   std::vector<std::size_t> blockStart;
   std::size_t blockEnd(int t) const { return blockStart[t + 1]; }
-  void prepare(int threads, std::size_t n, const std::uint32_t* rowStart, const std::uint32_t* touchingStart,
-               const std::uint32_t* wallRowStart) {
-    BlockSplit::compute(rowStart, touchingStart, wallRowStart, n, threads, blockStart);
+  void prepare(int threads, std::size_t n, const NeighbourList& list, const WallContactList& wallList, bool withWalls) {
+    splitRowsAmongThreads(list, wallList, withWalls, n, threads, blockStart);
     const std::size_t t = threads > 1 ? threads - 1 : 0;
     force.resize(t);
     torque.resize(t);
@@ -721,8 +728,7 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
     const int t = omp_get_thread_num();
     const int team = omp_get_num_threads();
 #pragma omp single
-    buffers.prepare(team, n, list.rowStart.data(), list.touchingStart.size() == n + 1 ? list.touchingStart.data() : nullptr,
-                    walls.primitives->empty() ? nullptr : wallList.rowStart.data());
+    buffers.prepare(team, n, list, wallList, !walls.primitives->empty());
     // (implicit barrier)
     const std::size_t begin = buffers.blockStart[t], end = buffers.blockStart[t + 1];
     thread_local ContactBatch batch;

@@ -77,10 +77,10 @@ void buildCompressedRows(std::size_t n, std::vector<std::vector<T>>& scratch, st
   // Chunk c: rows [bound[c], bound[c + 1]); equal shares of rows + costStart (before rowStart is
   // overwritten: costStart may be the caller's previous rowStart).
   std::vector<std::size_t> bound(static_cast<std::size_t>(chunks) + 1, n);
+  const auto share = [&](std::size_t i) {
+    return static_cast<double>(i) + (costStart ? static_cast<double>(costStart[i]) : 0.0);
+  };
   for (std::int64_t c = 0; c < chunks; ++c) {
-    const auto share = [&](std::size_t i) {
-      return static_cast<double>(i) + (costStart ? static_cast<double>(costStart[i]) : 0.0);
-    };
     const double target = share(n) * static_cast<double>(c) / static_cast<double>(chunks);
     std::size_t lo = c == 0 ? 0 : bound[c - 1], hi = n;  // first row whose share reaches target
     while (lo < hi) {

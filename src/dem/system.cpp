@@ -199,11 +199,10 @@ void System::rebuild(std::vector<std::uint32_t> order, std::size_t listedRows) {
 }
 
 const std::vector<std::size_t>& System::threadBlocks() {
-  // the arguments of PartnerBuffers::prepare in contactForcesAndKick
+  // (lists of other particles, before a rebuild: no split, the callers fall back to equal blocks)
   const std::size_t n = particles_.size();
-  BlockSplit::compute(list_.rowStart.data(), list_.touchingStart.size() == n + 1 ? list_.touchingStart.data() : nullptr,
-                      primitives_.empty() ? nullptr : wallList_.rowStart.data(), list_.rows() == n ? n : 0,
-                      omp_get_max_threads(), threadBlocks_);
+  if (list_.rows() != n || (!primitives_.empty() && wallList_.rowStart.size() != n + 1)) threadBlocks_.clear();
+  else splitRowsAmongThreads(list_, wallList_, !primitives_.empty(), n, omp_get_max_threads(), threadBlocks_);
   return threadBlocks_;
 }
 
