@@ -83,6 +83,10 @@ class Coupler {
   /// which forces go back to the fluid.
   Coupler(Params& root, const CartesianGrid& grid, const std::array<bool, 3>& periodic, const Vec3& gravity,
           ExchangeModel model = ExchangeModel::A);
+  // not copyable: deposit_.blocks points at this coupler's particleBlocks_ (a copy's would point
+  // at the original's)
+  Coupler(const Coupler&) = delete;
+  Coupler& operator=(const Coupler&) = delete;
 
   void computeVoidFraction(const dem::ParticleSet& particles, CouplingFields& fields);
   void computeParticleForces(const FluidView& fluid, const CouplingFields& fields, dem::ParticleSet& particles);
