@@ -116,7 +116,7 @@ SettledTile settleBed(double lx, double ly, int count, bool periodic) {
   const double g = 9.81;
   System s(params, domain, gf::Vec3{0, 0, -g});
   auto& p = s.particles();
-  p.hasExternalForces = true;  // extra weight compacts the bed faster
+  p.enableExternalForces();  // extra weight compacts the bed faster
   for (std::size_t i = 0; i < p.size(); ++i) p.externalForce[i] = gf::Vec3{0, 0, -3.0 * g * p.mass[i]};
   const double dt = 1e-5;
   for (int k = 0; k < 6000; ++k) s.step(dt);

@@ -408,7 +408,7 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
   if (!stencilsReady_ || stencils_.size() != n)
     throw std::logic_error("coupling: computeVoidFraction must run before computeParticleForces (particle count changed)");
   lastFluid_ = fluid;
-  particles.hasExternalForces = true;
+  particles.enableExternalForces();
   const ForceSwitches& w = settings_.forces;
   for (int a = 0; a < 3; ++a) {
     if (!fluid.velocity[a]) throw std::invalid_argument("coupling: FluidView::velocity is not set");

@@ -17,9 +17,18 @@ std::size_t ParticleSet::add(std::int64_t newId, std::int32_t materialType, doub
   angularVelocity.push_back(omega);
   force.push_back({});
   torque.push_back({});
-  externalForce.push_back({});
-  externalTorque.push_back({});
+  if (hasExternalForces) {
+    externalForce.push_back({});
+    externalTorque.push_back({});
+  }
   return id.size() - 1;
+}
+
+void ParticleSet::enableExternalForces() {
+  if (hasExternalForces) return;
+  externalForce.assign(size(), Vec3{});
+  externalTorque.assign(size(), Vec3{});
+  hasExternalForces = true;
 }
 
 void ParticleSet::reserve(std::size_t n) {
@@ -32,8 +41,10 @@ void ParticleSet::reserve(std::size_t n) {
   angularVelocity.reserve(n);
   force.reserve(n);
   torque.reserve(n);
-  externalForce.reserve(n);
-  externalTorque.reserve(n);
+  if (hasExternalForces) {
+    externalForce.reserve(n);
+    externalTorque.reserve(n);
+  }
 }
 
 namespace {
@@ -55,8 +66,10 @@ void ParticleSet::gather(const std::vector<std::uint32_t>& order) {
   gatherArray(angularVelocity, order);
   gatherArray(force, order);
   gatherArray(torque, order);
-  gatherArray(externalForce, order);
-  gatherArray(externalTorque, order);
+  if (hasExternalForces) {
+    gatherArray(externalForce, order);
+    gatherArray(externalTorque, order);
+  }
 }
 
 void ParticleSet::save(BinaryWriter& out) const {
@@ -85,14 +98,21 @@ void ParticleSet::load(BinaryReader& in) {
   torque = in.getVector<Vec3>();
   externalForce = in.getVector<Vec3>();
   externalTorque = in.getVector<Vec3>();
-  hasExternalForces = false;
-  for (std::size_t i = 0; i < externalForce.size() && !hasExternalForces; ++i)
-    hasExternalForces = normSquared(externalForce[i]) != 0.0 || normSquared(externalTorque[i]) != 0.0;
   const std::size_t n = id.size();
   if (type.size() != n || radius.size() != n || mass.size() != n || position.size() != n || velocity.size() != n ||
-      angularVelocity.size() != n || force.size() != n || torque.size() != n || externalForce.size() != n ||
-      externalTorque.size() != n)
+      angularVelocity.size() != n || force.size() != n || torque.size() != n ||
+      externalForce.size() != externalTorque.size() || (!externalForce.empty() && externalForce.size() != n))
     throw CheckpointError("checkpoint is corrupt: particle arrays have different lengths");
+  // External forces that are all zero (a DEM-only run, or a checkpoint written before they were
+  // sized on demand) are dropped: the force loop gives the same result without them.
+  bool anyExternal = false;
+  for (std::size_t i = 0; i < externalForce.size() && !anyExternal; ++i)
+    anyExternal = normSquared(externalForce[i]) != 0.0 || normSquared(externalTorque[i]) != 0.0;
+  hasExternalForces = anyExternal;
+  if (!anyExternal) {
+    externalForce = {};
+    externalTorque = {};
+  }
 }
 
 }  // namespace gf::dem

@@ -19,13 +19,20 @@ struct ParticleSet {
   std::vector<Vec3> angularVelocity;  // rad/s
   std::vector<Vec3> force;            // N, contact + body forces of the current step
   std::vector<Vec3> torque;           // N m
-  std::vector<Vec3> externalForce;    // N, set by the coupling (fluid forces), held over DEM substeps
-  std::vector<Vec3> externalTorque;   // N m
-  /// False while externalForce and externalTorque are all zero (DEM-only runs): the force loop then
-  /// skips reading them (same result, fewer bytes per particle-step). Whoever writes them sets it.
+  /// N, set by the coupling (fluid forces), held over DEM substeps; with externalTorque (N m) sized
+  /// only once enableExternalForces() was called (empty in DEM-only runs: 48 bytes per particle
+  /// less, and the force loop reads nothing for them).
+  std::vector<Vec3> externalForce;
+  std::vector<Vec3> externalTorque;
+  /// True iff externalForce and externalTorque are sized (one entry per particle, kept so by add and
+  /// gather); the force loop adds them only then.
   bool hasExternalForces = false;
 
   std::size_t size() const { return id.size(); }
+
+  /// Sizes externalForce and externalTorque (new entries zero) and sets hasExternalForces; whoever
+  /// writes external forces calls it first. No-op if already enabled.
+  void enableExternalForces();
 
   /// Appends one particle; returns its index.
   std::size_t add(std::int64_t newId, std::int32_t materialType, double r, double density, const Vec3& x,

@@ -244,6 +244,61 @@ TEST(DemSystem, RestartContinuesBitIdentically) {
   EXPECT_EQ(snapshot(*restarted), snapshot(*continuous));
 }
 
+// External forces are sized on demand: a DEM-only system holds none (48 B per particle less);
+// enabled with zero values they change nothing; once enabled they stay one per particle through
+// insertion, removal, reordering and a restart, and an all-zero set is dropped at load.
+TEST(DemSystem, ExternalForcesAreSizedOnDemandAndChangeNothingWhenZero) {
+  const std::string yaml = bedCase(1, "");
+  DemCase plain(yaml, {0, 0, -9.81});
+  DemCase zeroed(yaml, {0, 0, -9.81});
+  EXPECT_FALSE(plain->particles().hasExternalForces);
+  EXPECT_TRUE(plain->particles().externalForce.empty());
+  const std::size_t bytesWithout = plain->memoryBytes();
+  zeroed->particles().enableExternalForces();
+  const std::size_t n = zeroed->particles().size();
+  ASSERT_EQ(zeroed->particles().externalForce.size(), n);
+  EXPECT_GE(zeroed->memoryBytes(), bytesWithout + 2 * n * sizeof(Vec3));
+  for (int s = 0; s < 700; ++s) {
+    plain->step(2e-5);
+    zeroed->step(2e-5);
+  }
+  EXPECT_EQ(plain->particles().position, zeroed->particles().position);
+  EXPECT_EQ(plain->particles().velocity, zeroed->particles().velocity);
+
+  // a standalone set: the arrays stay one per particle through add and gather (reordering)
+  ParticleSet loose = randomParticles(50, {0.01, 0.01, 0.01}, 3);
+  loose.enableExternalForces();
+  const std::size_t added = loose.add(999999, 0, 0.001, 2500, {0.003, 0.003, 0.015});
+  ASSERT_EQ(loose.externalForce.size(), loose.size());
+  loose.externalForce[added] = Vec3{1e-4, 0, 0};
+  std::vector<std::uint32_t> reversed(loose.size());
+  for (std::size_t k = 0; k < loose.size(); ++k) reversed[k] = static_cast<std::uint32_t>(loose.size() - 1 - k);
+  loose.gather(reversed);
+  ASSERT_EQ(loose.externalTorque.size(), loose.size());
+  EXPECT_EQ(loose.id[0], 999999);
+  EXPECT_EQ(loose.externalForce[0].x, 1e-4);
+
+  // a restart keeps non-zero external forces
+  ParticleSet& p = zeroed->particles();
+  p.externalForce[0] = Vec3{1e-4, 0, 0};
+  const std::vector<char> saved = snapshot(*zeroed);
+  DemCase restarted(yaml, {0, 0, -9.81});
+  BinaryReader reader(saved.data(), saved.size());
+  restarted->load(reader);
+  EXPECT_TRUE(restarted->particles().hasExternalForces);
+  EXPECT_EQ(restarted->particles().externalForce, p.externalForce);
+
+  // all zero at save: dropped at load, same state otherwise
+  p.externalForce[0] = Vec3{};
+  const std::vector<char> savedZero = snapshot(*zeroed);
+  DemCase reloaded(yaml, {0, 0, -9.81});
+  BinaryReader zeroReader(savedZero.data(), savedZero.size());
+  reloaded->load(zeroReader);
+  EXPECT_FALSE(reloaded->particles().hasExternalForces);
+  EXPECT_TRUE(reloaded->particles().externalForce.empty());
+  EXPECT_EQ(reloaded->particles().position, p.position);
+}
+
 // Elastic (e = 1), frictionless particles in a closed box: velocity Verlet conserves the total
 // energy (kinetic + elastic Hertz potential 2/5 k d^(5/2)) to 0.1 % over 1e5 steps.
 TEST(DemSystem, ElasticBoxConservesEnergy) {
