@@ -396,6 +396,46 @@ TEST(FastPaths, SumsAndDepositsFollowTheGivenParticleSplit) {
   EXPECT_NEAR(total, expected, 1e-12 * expected);  // the weights of a particle add up to 1
 }
 
+TEST(FastPaths, ReusedDepositBuffersGiveTheBitsOfFreshOnes) {
+  // The per-thread buffers stay zero between deposits (each thread zeroes the cells it touched,
+  // the merge reads a buffer only there): one DepositBuffers used for deposits of 5, 1 and 8
+  // channels over particle sets in other parts of the grid, and over splits where a thread has
+  // all or none of the particles, gives each time the bits of a deposit with new buffers.
+  const CartesianGrid g = makeGrid({2, 6, 8}, {0.0075, 0.005, 0.005});
+  const auto scheme = makeScheme("divided");
+  const GridTopology t(g, {true, false, false});
+  const std::size_t cells = Field(g).data().size();
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(std::max(2, saved));
+  DepositBuffers reused;
+  for (const auto& d : reused.perThread) ASSERT_TRUE(d.empty());
+  auto check = [&]<int C>(const dem::ParticleSet& particles, const std::vector<std::size_t>* split, int round) {
+    ParticleStencils s;
+    scheme->buildStencils(particles, t, s);
+    auto value = [&](std::size_t p, double (&v)[C]) {
+      for (int ch = 0; ch < C; ++ch) v[ch] = (ch % 2 == 0 ? 1.0 : -1.0) * particles.radius[p] * (1.0 + ch + p % 7);
+    };
+    reused.blocks = split;
+    const std::vector<double> again = depositChannels<C>(s, cells, reused, value);
+    DepositBuffers fresh;
+    fresh.blocks = split;
+    const std::vector<double> first = depositChannels<C>(s, cells, fresh, value);
+    ASSERT_EQ(again.size(), first.size());
+    for (std::size_t q = 0; q < first.size(); ++q) ASSERT_EQ(again[q], first[q]) << round << " " << q;
+    for (const auto& buffer : reused.perThread)
+      for (double v : buffer) ASSERT_EQ(v, 0.0) << round;  // zero again after the deposit
+  };
+  const dem::ParticleSet low = randomParticles(5000, 0.00125, 0.00125, {0, 0, 0}, {0.015, 0.03, 0.015}, 41);
+  const dem::ParticleSet high = randomParticles(6000, 0.00125, 0.00125, {0, 0, 0.02}, {0.015, 0.03, 0.04}, 43);
+  const std::vector<std::size_t> allOnFirst{0, 6000, 6000}, allOnSecond{0, 0, 6000};
+  check.template operator()<5>(low, nullptr, 0);
+  check.template operator()<1>(high, nullptr, 1);
+  check.template operator()<8>(high, &allOnFirst, 2);
+  check.template operator()<5>(high, &allOnSecond, 3);
+  check.template operator()<1>(low, nullptr, 4);
+  omp_set_num_threads(saved);
+}
+
 TEST(FastPaths, ViscousStressDivergenceIsTheSevenPointLaplacianBitForBit) {
   // computeViscousStressDivergence (rows, components side by side in one vector) against the
   // definition cell by cell: mu sum_a (u_hi - 2 u_c + u_lo) / h_a^2, the neighbour across a wall
