@@ -1,0 +1,39 @@
+#!/usr/bin/env python3
+"""Writes the particle positions of a grainflow particles_*.vtu as an OpenFOAM
+kinematicCloudPositions file, shifted by (dx, dy, dz) (grainflow's bed spans x in [0, 0.015],
+y in [0, 0.15]; the DPMFoam Goldschmidt tutorial's spans [-0.0075, 0.0075] x [-0.075, 0.075]).
+   vtu_positions_to_openfoam.py PARTICLES.vtu OUT [dx dy dz]
+Reads grainflow's VTU layout: inline base64 binary arrays with a UInt64 byte-count header."""
+import base64
+import re
+import struct
+import sys
+
+
+def points(path):
+    text = open(path, encoding="ascii").read()
+    match = re.search(r'<DataArray type="Float64" Name="Points" NumberOfComponents="3" format="binary">\s*([^<]*)<', text)
+    if not match:
+        sys.exit(f"{path}: no binary Float64 'Points' array (a grainflow particles VTU is expected)")
+    raw = base64.b64decode(match.group(1).strip())
+    (size,) = struct.unpack_from("<Q", raw, 0)
+    values = struct.unpack_from(f"<{size // 8}d", raw, 8)
+    return [values[i:i + 3] for i in range(0, len(values), 3)]
+
+
+def main():
+    if len(sys.argv) not in (3, 6):
+        sys.exit(__doc__)
+    shift = [float(v) for v in sys.argv[3:6]] if len(sys.argv) == 6 else [-0.0075, -0.075, 0.0]
+    pts = points(sys.argv[1])
+    with open(sys.argv[2], "w", encoding="ascii") as out:
+        out.write("FoamFile\n{\n    version 2.0;\n    format ascii;\n    class vectorField;\n"
+                  "    object kinematicCloudPositions;\n}\n\n(\n")
+        for x, y, z in pts:
+            out.write(f"({x + shift[0]:.9g} {y + shift[1]:.9g} {z + shift[2]:.9g})\n")
+        out.write(")\n")
+    print(f"{len(pts)} positions written to {sys.argv[2]}")
+
+
+if __name__ == "__main__":
+    main()
