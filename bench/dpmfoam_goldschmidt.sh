@@ -2,7 +2,7 @@
 # The reference of issue 6's speed target: OpenFOAM's DPMFoam (Debian package openfoam, v1912) on
 # its own Goldschmidt tutorial, the pseudo-2D bubbling bed that cases/cfddem_bubbling_fluidised_bed.yaml
 # reproduces (24,750 spheres d = 2.5 mm, rho = 2526 kg/m3, 2 x 30 x 90 cells, inlet 1.875 m/s, fluid
-# step 2e-5 s, E = 1e8 Pa, nu = 0.35, e = 0.97, mu = 0.10 / 0.09, Ergun + Wen-Yu drag), one process.
+# step 2e-5 s, E = 1e8 Pa, nu = 0.35, e = 0.97, mu = 0.10 / 0.09, Ergun + Wen-Yu drag).
 # Times WINDOW simulated seconds and prints DPMFoam's wall time per simulated second, from its own
 # ExecutionTime after the first step (the set-up, mesh and injection are not counted).
 #   bash bench/dpmfoam_goldschmidt.sh [WINDOW] [PARTICLES_VTU] [PROCESSES]   (defaults 0.01, tutorial
@@ -40,15 +40,15 @@ if [ "$processes" -gt 1 ]; then
 else
   DPMFoam > log.DPMFoam 2>&1
 fi
-python3 - log.DPMFoam "$window" <<'PY'
+python3 - log.DPMFoam <<'PY'
 import re, sys
 log = open(sys.argv[1]).read()
 times = [float(t) for t in re.findall(r"^Time = (\S+)$", log, re.M)]
 wall = [float(w) for w in re.findall(r"^ExecutionTime = (\S+) s", log, re.M)]
 cycles = [int(c) for c in re.findall(r"^\s*(\d+) move-collide subCycles", log, re.M)]
 parcels = re.findall(r"Current number of parcels\s*=\s*(\d+)", log)
-if len(times) < 3 or len(wall) < 3:
-    sys.exit("DPMFoam log: fewer than 3 time steps (see log.DPMFoam)")
+if len(times) < 3 or len(wall) < 3 or not cycles:
+    sys.exit("DPMFoam log: fewer than 3 time steps or no sub-cycle lines (see log.DPMFoam)")
 n = min(len(times), len(wall))
 simulated = times[n - 1] - times[0]
 seconds = wall[n - 1] - wall[0]
