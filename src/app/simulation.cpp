@@ -268,21 +268,42 @@ void Simulation::advance() {
   // One coupling step. Data flows one way (seed 000, unresolved CFD-DEM algorithm; seed 001,
   // coupling scheme): fluid -> coupling (forces on particles) -> DEM substeps -> coupling (void
   // fraction and exchange fields) -> fluid. The fluid step uses the exchange fields of the
-  // previous coupling step; the particles feel the fluid it just produced.
-  if (fluid_) fluid_->step(fluidStep());
-  if (coupler_) {
+  // previous coupling step; the particles feel the fluid it just produced: once, held over the
+  // substeps, or (substep_fluid_fields: interpolated) before every substep, the fluid linear in
+  // time between its previous and its new state (coupling/fluid_fields_in_time.hpp).
+  const bool everySubstep =
+      coupler_ && coupler_->settings().substepFluidFields == coupling::SubstepFluidFields::Interpolated;
+  if (everySubstep) {
     ScopedPhase timer(appTimers_, Phase::Coupling);
-    coupler_->setParticleBlocks(dem_->threadBlocks());  // each thread on the particles it moves
-    coupler_->computeParticleForces(fluidView(), fluid_->couplingFields(), dem_->particles());
+    fieldsInTime_.keepStart(fluidView());
   }
-  for (int s = 0; s < settings_.demStepsPerCouplingStep; ++s) dem_->step(settings_.demStep);
+  if (fluid_) fluid_->step(fluidStep());
+  coupling::FluidView fluidNow;
   if (coupler_) {
     ScopedPhase timer(appTimers_, Phase::Coupling);
+    fluidNow = fluidView();
+  }
+  if (coupler_ && !everySubstep) forcesOnParticles(fluidNow);
+  if (everySubstep) coupler_->beginSubstepAverage();
+  const int substeps = settings_.demStepsPerCouplingStep;
+  for (int s = 0; s < substeps; ++s) {
+    if (everySubstep) forcesOnParticles(fieldsInTime_.at(fluidNow, (s + 1.0) / substeps, settings_.demStep));
+    dem_->step(settings_.demStep);
+  }
+  if (coupler_) {
+    ScopedPhase timer(appTimers_, Phase::Coupling);
+    if (everySubstep) coupler_->endSubstepAverage(dem_->particles());  // the substeps' mean exchange
     coupler_->setParticleBlocks(dem_->threadBlocks());  // (the DEM steps may have rebuilt the lists)
     coupler_->computeVoidFraction(dem_->particles(), fluid_->couplingFields());
     coupler_->fillFluidSources(dem_->particles(), fluid_->couplingFields());
   }
-  step_ += settings_.demStepsPerCouplingStep;
+  step_ += substeps;
+}
+
+void Simulation::forcesOnParticles(const coupling::FluidView& fluid) {
+  ScopedPhase timer(appTimers_, Phase::Coupling);
+  coupler_->setParticleBlocks(dem_->threadBlocks());  // each thread on the particles it moves
+  coupler_->computeParticleForces(fluid, fluid_->couplingFields(), dem_->particles());
 }
 
 RunState Simulation::state() const {

@@ -11,6 +11,7 @@
 #include "core/params.hpp"
 #include "core/timers.hpp"
 #include "coupling/coupler.hpp"
+#include "coupling/fluid_fields_in_time.hpp"
 #include "dem/system.hpp"
 #include "fluid/solver.hpp"
 #include "io/csv_series.hpp"
@@ -102,6 +103,7 @@ class Simulation {
   void checkHealth() const;
   void checkTimeStep(Params& root);
   coupling::FluidView fluidView();
+  void forcesOnParticles(const coupling::FluidView& fluid);  // coupler: fluid forces on the particles
   void initialiseCoupling();
 
   CaseSettings settings_;
@@ -111,6 +113,7 @@ class Simulation {
   std::unique_ptr<fluid::Solver> fluid_;        // absent for DEM-only cases
   std::unique_ptr<coupling::Coupler> coupler_;  // absent without a 'coupling' section
   Field fluidVelocity_[3], fluidPressureGradient_[3];  // cell-centred, lent to the coupling
+  coupling::FluidFieldsInTime fieldsInTime_;           // substep_fluid_fields: interpolated
   std::vector<MonitorSlot> monitors_;
   std::uint64_t fingerprint_ = 0;
   std::string caseFile_;

@@ -52,6 +52,20 @@ CouplerSettings readSettings(Params& s) {
   c.coarseGraining.factor = s.real({"coarse_grain_factor", "-", "parcel diameter / primary particle diameter k "
                                                                 "(a parcel holds k^3 particles)", Range::atLeast(1.0)},
                                    1.0);
+  c.substepFluidFields =
+      s.choice({"substep_fluid_fields", "-",
+                "fluid forces over the DEM substeps of a coupling step (time.coupling_interval > 1): 'held' = "
+                "computed once from the new fluid state and the particles at the start of the interval, held "
+                "(seed 000 Base Case, CFDEM); 'interpolated' = recomputed before every substep from the current "
+                "particles, with fluid velocity and pressure gradient linear in time between the previous and the "
+                "new fluid step (seed 000 Case II); the fluid receives the substeps' mean exchange"},
+               {"held", "interpolated"}, "held") == "interpolated"
+          ? SubstepFluidFields::Interpolated
+          : SubstepFluidFields::Held;
+  if (c.substepFluidFields == SubstepFluidFields::Interpolated && c.interpolation == InterpolationMode::Stencil)
+    s.fail("substep_fluid_fields", "interpolated with interpolation: stencil",
+           "interpolation 'cell' or 'trilinear' with interpolated substep fields (the stencils are those of the "
+           "particle positions at the start of the coupling step)");
   Params f = s.section({"forces", "", "fluid forces on particles, each on or off"});
   ForceSwitches& w = c.forces;
   w.drag = f.boolean({"drag", "-", "drag force beta_p (u_f - u_p)"}, true);
@@ -405,7 +419,9 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
 void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields& fields,
                                     dem::ParticleSet& particles) {
   const std::size_t n = particles.size();
-  if (!stencilsReady_ || stencils_.size() != n)
+  // (substeps after the first: cell and trilinear sampling read positions, not the stencils)
+  const bool stencilsNeeded = !averaging_ || averagedSubsteps_ == 0 || settings_.interpolation == InterpolationMode::Stencil;
+  if (!stencilsReady_ || (stencilsNeeded && stencils_.size() != n))
     throw std::logic_error("coupling: computeVoidFraction must run before computeParticleForces (particle count changed)");
   lastFluid_ = fluid;
   particles.enableExternalForces();
@@ -443,6 +459,74 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
   forcesReady_ = true;
   exchangePending_ = true;
   exchangeDeposited_ = false;
+  if (averaging_) accumulateSubstep(particles);
+}
+
+void Coupler::beginSubstepAverage() {
+  averaging_ = true;
+  averagedSubsteps_ = 0;
+}
+
+void Coupler::alignSubstepSums(const dem::ParticleSet& particles) {
+  if (particles.id == averageId_) return;
+  std::unordered_map<std::int64_t, std::size_t> oldIndex;
+  oldIndex.reserve(averageId_.size());
+  for (std::size_t q = 0; q < averageId_.size(); ++q) oldIndex.emplace(averageId_[q], q);
+  const std::size_t n = particles.size();
+  std::vector<double> beta(n, 0.0);
+  std::vector<Vec3> drag(n), other(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    const auto it = oldIndex.find(particles.id[p]);
+    if (it == oldIndex.end()) continue;  // new: absent from the earlier substeps
+    beta[p] = betaSum_[it->second];
+    drag[p] = dragSum_[it->second];
+    other[p] = otherSum_[it->second];
+  }
+  betaSum_ = std::move(beta);
+  dragSum_ = std::move(drag);
+  otherSum_ = std::move(other);
+  averageId_ = particles.id;
+}
+
+void Coupler::accumulateSubstep(const dem::ParticleSet& particles) {
+  const std::size_t n = particles.size();
+  if (averagedSubsteps_ == 0) {
+    averageId_ = particles.id;
+    betaSum_.assign(n, 0.0);
+    dragSum_.assign(n, Vec3{});
+    otherSum_.assign(n, Vec3{});
+  } else {
+    alignSubstepSums(particles);
+  }
+  forEachIndex(static_cast<std::int64_t>(n), 8, [&](std::int64_t p) {
+    betaSum_[p] += beta_[p];
+    dragSum_[p] += force::drag(beta_[p], slip_[p]);
+    otherSum_[p] += otherExchangedForce_[p];
+  });
+  ++averagedSubsteps_;
+}
+
+void Coupler::endSubstepAverage(const dem::ParticleSet& particles) {
+  averaging_ = false;
+  const int substeps = averagedSubsteps_;
+  averagedSubsteps_ = 0;
+  if (substeps <= 1) return;  // (one substep: its exchange as computed, bit for bit)
+  alignSubstepSums(particles);
+  const std::size_t n = particles.size();
+  beta_.resize(n);
+  slip_.resize(n);
+  otherExchangedForce_.resize(n);
+  const double inverse = 1.0 / static_cast<double>(substeps);
+  forEachIndex(static_cast<std::int64_t>(n), 8, [&](std::int64_t p) {
+    // mean beta and mean drag; the slip is what gives that drag with the mean beta (to round-off)
+    const double beta = inverse * betaSum_[p];
+    const Vec3 drag = inverse * dragSum_[p];
+    beta_[p] = beta;
+    slip_[p] = beta > 0.0 ? (1.0 / beta) * drag : Vec3{};
+    otherExchangedForce_[p] = inverse * otherSum_[p];
+  });
+  previousId_ = particles.id;
+  particleForceSumsValid_ = false;  // the balance sums the means
 }
 
 void Coupler::realignToParticles(const dem::ParticleSet& particles) {

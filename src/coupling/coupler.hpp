@@ -61,6 +61,13 @@ struct ForceSwitches {
   double virtualMassCoefficient = 0.5;
 };
 
+/// What the particles see of the fluid over the DEM substeps of one coupling step
+/// (coupling.substep_fluid_fields, docs/coupling.md sec. 8).
+enum class SubstepFluidFields {
+  Held,          // forces once per coupling step, held over the substeps (seed 000 "Base Case", CFDEM)
+  Interpolated,  // forces before every substep, fluid fields linear in time (seed 000 "Case II")
+};
+
 struct CouplerSettings {
   ExchangeModel model = ExchangeModel::A;  // from the fluid solver (fluid.model), not a coupling key
   std::string dragLaw = "di_felice";
@@ -74,6 +81,7 @@ struct CouplerSettings {
   double minVoidFraction = 0.1;
   double minRelaxationToIntervalRatio = 10.0;
   CoarseGraining coarseGraining;
+  SubstepFluidFields substepFluidFields = SubstepFluidFields::Held;
 };
 
 class Coupler {
@@ -93,6 +101,16 @@ class Coupler {
   void fillFluidSources(const dem::ParticleSet& particles, CouplingFields& fields);
   /// Same, when the particle set is unchanged (same order) since computeParticleForces.
   void fillFluidSources(CouplingFields& fields);
+  /// Forces before every DEM substep (SubstepFluidFields::Interpolated): between
+  /// beginSubstepAverage() and endSubstepAverage(), every computeParticleForces adds its
+  /// per-particle exchange (beta, drag beta * slip, other exchanged forces) to running sums,
+  /// matched by particle id (the DEM may reorder, insert and remove particles between substeps;
+  /// a particle counts zero for the substeps it was absent). The end leaves the means over the
+  /// substeps as the exchange of the coupling step: the fluid receives sum_s F_s dt_dem over the
+  /// interval N dt_dem, the momentum the particles took. One substep: its exchange unchanged.
+  void beginSubstepAverage();
+  void endSubstepAverage(const dem::ParticleSet& particles);
+
   /// Particles per thread for the particle loops that follow (dem::System::threadBlocks: each
   /// thread then works on the particles whose contacts it computed, in its core's cache). Empty,
   /// or not a split of the current particles for the team: equal blocks. The sums over particles
@@ -139,6 +157,8 @@ class Coupler {
   void alignPreviousSlip(const dem::ParticleSet& particles);
   void keepSlipAsPrevious();
   void realignToParticles(const dem::ParticleSet& particles);
+  void accumulateSubstep(const dem::ParticleSet& particles);
+  void alignSubstepSums(const dem::ParticleSet& particles);
   /// What is deposited per particle for the fluid (see exchangeValues): explicit, every exchanged
   /// force (3); implicit, the explicit part of the exchanged force (3), beta and beta (u_p - u_f@p)
   /// (4); implicit with no exchanged force besides the drag (model A without virtual mass and
@@ -198,6 +218,12 @@ class Coupler {
   // sum over particles of the exchanged force (x, y, z) and of its magnitude, from the force pass
   std::array<double, 4> particleForceSums_{};
   std::vector<std::size_t> particleBlocks_;  // setParticleBlocks
+  // substep average (beginSubstepAverage .. endSubstepAverage): sums per particle of averageId_
+  bool averaging_ = false;
+  int averagedSubsteps_ = 0;
+  std::vector<std::int64_t> averageId_;
+  std::vector<double> betaSum_;
+  std::vector<Vec3> dragSum_, otherSum_;
   std::vector<double> volumeSums_;  // per thread, computeVoidFraction
   std::vector<std::array<double, 3>> runSums_;  // per interior row of cells (deposit_.runs)
   bool particleForceSumsValid_ = false;

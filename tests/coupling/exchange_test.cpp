@@ -243,3 +243,72 @@ TEST(Exchange, FullCouplingStepIsBitIdenticalForTheSameThreadCount) {
     }
   }
 }
+
+TEST(Exchange, SubstepAverageGivesTheFluidTheMeanExchangeOfTheSubstepsMatchedById) {
+  // substep_fluid_fields: interpolated. Forces before each of two substeps (different fluid
+  // states; the "DEM" reverses the particle order in between): the fluid receives, cell by cell,
+  // the mean of what each substep's forces alone would give, and the balance holds.
+  const dem::ParticleSet base = randomParticles(400, 0.001, 0.002, {0, 0, 0}, {0.08, 0.077, 0.081});
+  FluidFields first(kGrid), second(kGrid);
+  first.setVelocity(kGrid, swirl);
+  first.setPressureGradient(kGrid, pressureGradient);
+  second.setVelocity(kGrid, [](const Vec3& x) { return 0.5 * swirl(x) + Vec3{0.1, -0.2, 0.3}; });
+  second.setPressureGradient(kGrid, [](const Vec3& x) { return 0.7 * pressureGradient(x); });
+  dem::ParticleSet reversed;
+  for (std::size_t q = base.size(); q-- > 0;)
+    reversed.add(base.id[q], 0, base.radius[q], 2500.0, base.position[q], base.velocity[q], base.angularVelocity[q]);
+  // per interior cell and axis: the exchange the fluid sees, forceDensity - K (u_c - u_p)
+  auto exchangeOf = [](const CouplingFields& f, const FluidFields& at) {
+    std::vector<double> e;
+    for (int k = 0; k < 9; ++k)
+      for (int j = 0; j < 7; ++j)
+        for (int i = 0; i < 8; ++i)
+          for (int a = 0; a < 3; ++a)
+            e.push_back(f.forceDensity[a](i, j, k) -
+                        f.dragCoefficient(i, j, k) * (at.u[a](i, j, k) - f.particleVelocity[a](i, j, k)));
+    return e;
+  };
+  for (const char* exchange : {"explicit", "implicit"}) {
+    const std::string yaml = std::string("  exchange: ") + exchange + "\n  substep_fluid_fields: interpolated\n";
+    auto single = [&](const FluidFields& fluid, const dem::ParticleSet& set) {
+      auto c = makeCoupler(yaml, kGrid, {true, false, false}, {0.0, 0.0, -9.81}, ExchangeModel::B);
+      dem::ParticleSet p = set;
+      CouplingFields fields(kGrid);
+      c->computeVoidFraction(p, fields);
+      c->computeParticleForces(fluid.view(1.2, 1.8e-5), fields, p);
+      c->computeVoidFraction(p, fields);
+      c->fillFluidSources(p, fields);
+      return std::pair{exchangeOf(fields, fluid), fields.dragCoefficient};
+    };
+    const auto [e1, k1] = single(first, base);
+    const auto [e2, k2] = single(second, reversed);
+
+    auto c = makeCoupler(yaml, kGrid, {true, false, false}, {0.0, 0.0, -9.81}, ExchangeModel::B);
+    dem::ParticleSet particles = base;
+    CouplingFields fields(kGrid);
+    c->computeVoidFraction(particles, fields);
+    c->beginSubstepAverage();
+    c->computeParticleForces(first.view(1.2, 1.8e-5), fields, particles);
+    particles = reversed;
+    c->computeParticleForces(second.view(1.2, 1.8e-5), fields, particles);
+    c->endSubstepAverage(particles);
+    c->computeVoidFraction(particles, fields);
+    c->fillFluidSources(particles, fields);
+    EXPECT_LT(norm(c->momentumBalanceError()), 1e-13 * c->exchangedForceScale()) << exchange;
+    const std::vector<double> mean = exchangeOf(fields, second);
+    double scale = 0.0;
+    for (double v : e1) scale = std::max(scale, std::abs(v));
+    ASSERT_GT(scale, 0.0);
+    for (std::size_t q = 0; q < mean.size(); ++q)
+      ASSERT_NEAR(mean[q], 0.5 * (e1[q] + e2[q]), 1e-12 * scale) << exchange << " entry " << q;
+    for (int k = 0; k < 9; ++k)
+      for (int j = 0; j < 7; ++j)
+        for (int i = 0; i < 8; ++i)
+          EXPECT_NEAR(fields.dragCoefficient(i, j, k), 0.5 * (k1(i, j, k) + k2(i, j, k)),
+                      1e-12 * std::max(1.0, std::abs(k1(i, j, k))));
+  }
+}
+
+TEST(Exchange, SubstepFieldsInterpolatedRejectStencilInterpolation) {
+  EXPECT_THROW(makeCoupler("  interpolation: stencil\n  substep_fluid_fields: interpolated\n", kGrid), CaseError);
+}
