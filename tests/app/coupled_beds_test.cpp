@@ -29,14 +29,14 @@ double ergun(double U, double eps, double d, double Hb, double mu, double rho) {
 
 }  // namespace
 
-// Fixed simple-cubic bed (eps = 1 - pi/6, d = 2 mm, Hb = 32 mm, water), Gidaspow drag: the pressure
+// cases/cfddem_fixed_packed_bed.yaml: fixed simple-cubic bed (eps = 1 - pi/6, d = 2 mm, Hb = 32 mm, water), Gidaspow drag: the pressure
 // gradient inside the bed times Hb is Ergun's pressure drop within 5 % (issue 6) at Re_p = 40, and
 // Newton's third law of the exchange holds to round-off in every coupling step.
 TEST(CoupledBeds, FixedPackedBedFollowsErgun) {
   TempDir dir;
-  std::string text = gf::testing::readAll(gf::testing::sourcePath("validation/cfddem_packed_bed_ergun/case.yaml"));
+  std::string text = gf::testing::readAll(gf::testing::sourcePath("cases/cfddem_fixed_packed_bed.yaml"));
   text = replaced(text, "velocity: [0.0, 0.0, 0.01]", "velocity: [0.0, 0.0, 0.02]");
-  text += "  - type: coupling_balance\n";
+  text += "  - type: coupling_balance\n    interval: 0.001\n";
   const auto r = grainflow("run " + dir.write("bed.yaml", text) + " --quiet --threads 1 --output " + dir.file("o"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const auto dp = gf::io::readCsv(dir.file("o/pressure_drop.csv"));
@@ -105,7 +105,7 @@ TEST(CoupledBeds, SpoutedBedJetLiftsParticles) {
 TEST(CoupledBeds, PressureDropConvergesWithSmoothingLength) {
   TempDir dir;
   const std::string base =
-      gf::testing::readAll(gf::testing::sourcePath("validation/cfddem_packed_bed_ergun/case.yaml"));
+      gf::testing::readAll(gf::testing::sourcePath("cases/cfddem_fixed_packed_bed.yaml"));
   auto dropWith = [&](const std::string& l) {
     std::string text = replaced(base, "  interpolation: cell", "  smoothing_length: " + l + "\n  interpolation: cell");
     text = replaced(text, "    lower: 0.021", "    lower: 0.001");
