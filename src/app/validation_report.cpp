@@ -165,7 +165,10 @@ void writeDocs(const std::string& docsDirectory, const std::string& repository, 
     const Item& item = items[i];
     md += fmt::format("## `{}`\n\n**{}**", item.name, item.title);
     md += item.description.empty() ? "\n\n" : fmt::format(" — {}\n\n", item.description);
-    md += fmt::format("Case: [`validation/{0}/{1}`](../validation/{0}/{1})", item.name, fs::path(item.caseFile).filename().string());
+    // the case relative to the source tree (validation/<item>/case.yaml, or an example case of cases/)
+    const fs::path root = fs::weakly_canonical(fs::path(item.directory)).parent_path().parent_path();
+    const std::string caseLink = fs::relative(fs::weakly_canonical(fs::path(item.caseFile)), root).generic_string();
+    md += fmt::format("Case: [`{0}`](../{0})", caseLink);
     if (!item.sweepKey.empty()) {
       std::vector<std::string> values;
       for (const RunPoint& r : item.runs) values.push_back(fmt::format("{:g}", r.x));
