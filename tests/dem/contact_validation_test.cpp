@@ -106,6 +106,46 @@ TEST(DemContact, HertzContactDurationWithinTwoPercent) {
   }
 }
 
+/// Two equal spheres approach head-on at v each (no gravity); contact duration (steps while the
+/// centres are closer than 2 r) and relative velocity after.
+ImpactResult pairImpact(const std::string& law, double e, double v, double dt) {
+  DemCase c(materialsYaml(law, e, 0.5, 1e7, 0.3, law == "hooke" ? "  normal_stiffness: 1e4" : "") +
+                "domain: {min: [-0.01, -0.01, -0.01], max: [0.01, 0.01, 0.01]}\n",
+            {0, 0, 0});
+  c->particles().add(0, 0, kRadius, kDensity, {-kRadius - 1e-7, 0, 0}, {v, 0, 0});
+  c->particles().add(1, 0, kRadius, kDensity, {kRadius + 1e-7, 0, 0}, {-v, 0, 0});
+  c->refresh();
+  int contactSteps = 0;
+  for (int s = 0; s < 2000000; ++s) {
+    c->step(dt);
+    const auto& x = c->particles().position;
+    if (x[1].x - x[0].x < 2.0 * kRadius) ++contactSteps;
+    else if (contactSteps > 0) break;
+  }
+  const auto& u = c->particles().velocity;
+  return {u[1] - u[0], {}, contactSteps * dt};
+}
+
+// Between two spheres (effective mass m/2, effective radius r/2): Hertz duration (Johnson 1985
+// eq. 11.24) and the damped linear-spring duration pi / omega_d, within 2 % (issue 4). Measured:
+// Hertz within 1e-5; Hooke e = 1 within 1e-5, e = 0.5 0.8 % short (the normal force is not allowed
+// to pull: it is clipped to zero once the dashpot outweighs the spring, before the overlap ends).
+TEST(DemContact, ParticlePairContactDurationWithinTwoPercent) {
+  const double eStar = 1e7 / (2.0 * (1.0 - 0.09)), mStar = 0.5 * kMass;
+  for (double v : {0.05, 0.5}) {  // each: closing speed 2 v
+    const double tc = hertz::elasticContactDuration(mStar, eStar, 0.5 * kRadius, 2.0 * v);
+    const ImpactResult r = pairImpact("hertz_mindlin", 1.0, v, tc / 500.0);
+    EXPECT_NEAR(r.duration, tc, 0.02 * tc) << "hertz v=" << v;
+    EXPECT_NEAR(r.velocity.x, 2.0 * v, 1e-3 * v) << "elastic: the closing speed comes back";
+  }
+  for (double e : {1.0, 0.5}) {
+    const double gamma = hooke::dampingCoefficient(dampingForRestitution(e, 1.0, 0.0), 1e4, mStar);
+    const double tc = hooke::contactDuration(1e4, mStar, gamma);
+    const ImpactResult r = pairImpact("hooke", e, 0.2, tc / 500.0);
+    EXPECT_NEAR(r.duration, tc, 0.02 * tc) << "hooke e=" << e;
+  }
+}
+
 TEST(DemContact, HookeContactDurationWithinTwoPercent) {
   for (double e : {1.0, 0.9}) {
     const double alpha = dampingForRestitution(e, 1.0, 0.0);
