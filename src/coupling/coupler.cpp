@@ -82,6 +82,32 @@ CouplerSettings readSettings(Params& s) {
   return c;
 }
 
+constexpr std::size_t kNewParticle = static_cast<std::size_t>(-1);
+
+/// For each id of `current`, its index in `previous`, or kNewParticle (the DEM reorders, inserts
+/// and removes particles between coupling calls; ids are unique).
+std::vector<std::size_t> previousIndexById(const std::vector<std::int64_t>& previous,
+                                           const std::vector<std::int64_t>& current) {
+  std::unordered_map<std::int64_t, std::size_t> oldIndex;
+  oldIndex.reserve(previous.size());
+  for (std::size_t q = 0; q < previous.size(); ++q) oldIndex.emplace(previous[q], q);
+  std::vector<std::size_t> from(current.size(), kNewParticle);
+  for (std::size_t p = 0; p < current.size(); ++p) {
+    const auto it = oldIndex.find(current[p]);
+    if (it != oldIndex.end()) from[p] = it->second;
+  }
+  return from;
+}
+
+/// values moved to the current order (`from`: previousIndexById); `missing` for new particles.
+template <class T>
+void moveToCurrentOrder(std::vector<T>& values, const std::vector<std::size_t>& from, const T& missing) {
+  std::vector<T> moved(from.size(), missing);
+  for (std::size_t p = 0; p < from.size(); ++p)
+    if (from[p] != kNewParticle) moved[p] = values[from[p]];
+  values = std::move(moved);
+}
+
 }  // namespace
 
 Coupler::Coupler(Params& root, const CartesianGrid& grid, const std::array<bool, 3>& periodic, const Vec3& gravity,
@@ -289,16 +315,8 @@ void Coupler::alignPreviousSlip(const dem::ParticleSet& particles) {
   // slip of each current particle at the previous coupling step (matched by id); a particle
   // without history gets NaN, read as "its current slip", i.e. no virtual-mass force in its first step
   if (particles.id == previousId_) return;
-  std::unordered_map<std::int64_t, std::size_t> oldIndex;
-  oldIndex.reserve(previousId_.size());
-  for (std::size_t q = 0; q < previousId_.size(); ++q) oldIndex.emplace(previousId_[q], q);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  std::vector<Vec3> aligned(particles.size());
-  for (std::size_t p = 0; p < particles.size(); ++p) {
-    const auto it = oldIndex.find(particles.id[p]);
-    aligned[p] = it == oldIndex.end() ? Vec3{nan, nan, nan} : previousSlip_[it->second];
-  }
-  previousSlip_ = std::move(aligned);
+  moveToCurrentOrder(previousSlip_, previousIndexById(previousId_, particles.id), Vec3{nan, nan, nan});
   previousId_ = particles.id;
 }
 
@@ -469,22 +487,11 @@ void Coupler::beginSubstepAverage() {
 
 void Coupler::alignSubstepSums(const dem::ParticleSet& particles) {
   if (particles.id == averageId_) return;
-  std::unordered_map<std::int64_t, std::size_t> oldIndex;
-  oldIndex.reserve(averageId_.size());
-  for (std::size_t q = 0; q < averageId_.size(); ++q) oldIndex.emplace(averageId_[q], q);
-  const std::size_t n = particles.size();
-  std::vector<double> beta(n, 0.0);
-  std::vector<Vec3> drag(n), other(n);
-  for (std::size_t p = 0; p < n; ++p) {
-    const auto it = oldIndex.find(particles.id[p]);
-    if (it == oldIndex.end()) continue;  // new: absent from the earlier substeps
-    beta[p] = betaSum_[it->second];
-    drag[p] = dragSum_[it->second];
-    other[p] = otherSum_[it->second];
-  }
-  betaSum_ = std::move(beta);
-  dragSum_ = std::move(drag);
-  otherSum_ = std::move(other);
+  // (a new particle was absent from the earlier substeps: sums 0)
+  const std::vector<std::size_t> from = previousIndexById(averageId_, particles.id);
+  moveToCurrentOrder(betaSum_, from, 0.0);
+  moveToCurrentOrder(dragSum_, from, Vec3{});
+  moveToCurrentOrder(otherSum_, from, Vec3{});
   averageId_ = particles.id;
 }
 
@@ -533,22 +540,10 @@ void Coupler::realignToParticles(const dem::ParticleSet& particles) {
   if (particles.id == previousId_) return;
   // The DEM reordered (or inserted / removed) particles since computeParticleForces: move the
   // per-particle exchange data to the new order by id; new particles exchange nothing.
-  std::unordered_map<std::int64_t, std::size_t> oldIndex;
-  oldIndex.reserve(previousId_.size());
-  for (std::size_t q = 0; q < previousId_.size(); ++q) oldIndex.emplace(previousId_[q], q);
-  const std::size_t n = particles.size();
-  std::vector<Vec3> other(n), slip(n);
-  std::vector<double> beta(n, 0.0);
-  for (std::size_t p = 0; p < n; ++p) {
-    const auto it = oldIndex.find(particles.id[p]);
-    if (it == oldIndex.end()) continue;
-    other[p] = otherExchangedForce_[it->second];
-    slip[p] = slip_[it->second];
-    beta[p] = beta_[it->second];
-  }
-  otherExchangedForce_ = std::move(other);
-  slip_ = std::move(slip);
-  beta_ = std::move(beta);
+  const std::vector<std::size_t> from = previousIndexById(previousId_, particles.id);
+  moveToCurrentOrder(otherExchangedForce_, from, Vec3{});
+  moveToCurrentOrder(slip_, from, Vec3{});
+  moveToCurrentOrder(beta_, from, 0.0);
   particleForceSumsValid_ = false;  // particles gone or new: sum the realigned forces
   keepSlipAsPrevious();
   previousId_ = particles.id;
