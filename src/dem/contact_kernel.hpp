@@ -294,18 +294,23 @@ struct BlockSweep {
 
   [[gnu::always_inline]] void initialiseUpTo(std::size_t stop) {
     std::size_t k = initialised;
-    Vec3* const f = force;
-    Vec3* const tq = torque;
-    if (external)
+    Vec3* __restrict const f = force;
+    Vec3* __restrict const tq = torque;
+    const double* __restrict const m = mass;
+    const Vec3 g = gravity;
+    if (external) {
+      const Vec3* __restrict const fe = externalForce;
+      const Vec3* __restrict const te = externalTorque;
       for (; k < stop; ++k) {
-        f[k] = mass[k] * gravity + externalForce[k];
-        tq[k] = externalTorque[k];
+        f[k] = m[k] * g + fe[k];
+        tq[k] = te[k];
       }
-    else
+    } else {
       for (; k < stop; ++k) {
-        f[k] = mass[k] * gravity;
+        f[k] = m[k] * g;
         tq[k] = Vec3{};
       }
+    }
     initialised = std::max(initialised, stop);
   }
   /// Requests the data the gather reads of the far partners of row a (index beyond
@@ -449,6 +454,21 @@ struct BlockSweep {
     if (kickHere) {
       velocity[i] += (halfKick * inverseMass[i]) * force[i];
       angularVelocity[i] += (halfKick * inverseMoment[i]) * torque[i];
+    }
+  }
+
+  /// The closing half kick of the particles [from, to), whose forces are final.
+  [[gnu::always_inline]] void kickRange(std::size_t from, std::size_t to) {
+    Vec3* __restrict const v = velocity;
+    Vec3* __restrict const w = angularVelocity;
+    const Vec3* __restrict const f = force;
+    const Vec3* __restrict const tq = torque;
+    const double* __restrict const im = inverseMass;
+    const double* __restrict const ii = inverseMoment;
+    const double h = halfKick;
+    for (std::size_t q = from; q < to; ++q) {
+      v[q] += (h * im[q]) * f[q];
+      w[q] += (h * ii[q]) * tq[q];
     }
   }
 
@@ -646,10 +666,26 @@ struct BlockSweep {
       const std::uint32_t length = rowStart[i + 1] - base;
       if constexpr (Prefetch) prefetchFarPartners(i + kPrefetchRows);
       if (length == 0) {
-        // No neighbours and nothing pending (free flight): complete the row at once.
-        initialiseUpTo(i + 1);
-        finishRow(i, Vec3{}, Vec3{});
-        ++i;
+        if (withWalls && wallRowStart[i] != wallRowStart[i + 1]) {
+          // No neighbours but wall entries: complete the row at once.
+          initialiseUpTo(i + 1);
+          finishRow(i, Vec3{}, Vec3{});
+          ++i;
+          continue;
+        }
+        // Free flight: the rows [i, k) have no partners and no wall entries. Their forces are
+        // final once initialised (half list: contributions to a row come from rows <= it, and
+        // the rows between are empty), so body forces and kicks run as two plain loops over the
+        // stretch instead of the row-by-row completion (same operations per particle).
+        std::size_t k = i + 1;
+        const std::uint32_t wallBase = withWalls ? wallRowStart[i] : 0;
+        while (k < end && rowStart[k + 1] == base && (!withWalls || wallRowStart[k + 1] == wallBase)) {
+          if constexpr (Prefetch) prefetchFarPartners(k + kPrefetchRows);
+          ++k;
+        }
+        initialiseUpTo(k);
+        if (kickHere) kickRange(i, k);
+        i = k;
         continue;
       }
       if (length > capacity) {

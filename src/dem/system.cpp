@@ -246,6 +246,63 @@ struct LargestTwo {
   }
 };
 #pragma omp declare reduction(largestTwo : LargestTwo : omp_out.merge(omp_in)) initializer(omp_priv = LargestTwo{})
+
+/// Opening half kick and drift of the particles [begin, end) (velocity Verlet), with the two
+/// largest squared displacements since the last list build. One instantiation per box kind and
+/// tracking state, raw restrict pointers in locals: the branches and the pointer reloads (the
+/// stores could alias the captured pointers) leave the loop. Same arithmetic per particle as
+/// before; the largest two are order-independent (exact max/min).
+struct DriftArrays {
+  Vec3* __restrict position;
+  Vec3* __restrict velocity;
+  Vec3* __restrict angularVelocity;
+  const Vec3* __restrict force;
+  const Vec3* __restrict torque;
+  const Vec3* __restrict positionAtBuild;
+  const double* __restrict inverseMass;
+  const double* __restrict inverseMoment;
+};
+
+template <bool Periodic, bool Tracked>
+void kickAndDrift(const DriftArrays& a, const PeriodicBox& box, double dt, std::int64_t begin, std::int64_t end,
+                  LargestTwo& largest) {
+  Vec3* __restrict x = a.position;
+  Vec3* __restrict v = a.velocity;
+  Vec3* __restrict w = a.angularVelocity;
+  const Vec3* __restrict f = a.force;
+  const Vec3* __restrict tq = a.torque;
+  const Vec3* __restrict x0 = a.positionAtBuild;
+  const double* __restrict inverseMass = a.inverseMass;
+  const double* __restrict inverseMoment = a.inverseMoment;
+  const double halfDt = 0.5 * dt;
+  const PeriodicBox localBox = box;
+  double first = largest.first, second = largest.second;
+  for (std::int64_t i = begin; i < end; ++i) {
+    const Vec3 vi = v[i] + (halfDt * inverseMass[i]) * f[i];
+    v[i] = vi;
+    w[i] += (halfDt * inverseMoment[i]) * tq[i];
+    const Vec3 xi = Periodic ? localBox.wrap(x[i] + dt * vi) : x[i] + dt * vi;
+    x[i] = xi;
+    if constexpr (Tracked) {
+      const double d2 = normSquared(Periodic ? localBox.minimumImage(xi - x0[i]) : xi - x0[i]);
+      second = std::max(second, std::min(first, d2));  // LargestTwo::add, in registers
+      first = std::max(first, d2);
+    }
+  }
+  largest.first = first;
+  largest.second = second;
+}
+
+void kickAndDriftRange(const DriftArrays& a, const PeriodicBox& box, bool tracked, double dt, std::int64_t begin,
+                       std::int64_t end, LargestTwo& largest) {
+  if (box.anyPeriodic) {
+    if (tracked) kickAndDrift<true, true>(a, box, dt, begin, end, largest);
+    else kickAndDrift<true, false>(a, box, dt, begin, end, largest);
+  } else {
+    if (tracked) kickAndDrift<false, true>(a, box, dt, begin, end, largest);
+    else kickAndDrift<false, false>(a, box, dt, begin, end, largest);
+  }
+}
 }  // namespace
 
 void System::step(double dt) {
@@ -257,39 +314,35 @@ void System::step(double dt) {
     // the two largest displacements since the last list build come with the drift.
     ScopedPhase timer(timers_, Phase::Integration);
     const bool tracked = positionAtBuild_.size() == p.size();
-    const double halfDt = 0.5 * dt;
-    const double* inverseMass = inverseMass_.data();
-    const double* inverseMoment = inverseMoment_.data();
-    Vec3* x = p.position.data();
-    Vec3* v = p.velocity.data();
-    Vec3* w = p.angularVelocity.data();
-    const Vec3* f = p.force.data();
-    const Vec3* tq = p.torque.data();
-    const Vec3* x0 = positionAtBuild_.data();
-    auto integrate = [&](std::int64_t i, LargestTwo& largest) {
-      v[i] += (halfDt * inverseMass[i]) * f[i];
-      w[i] += (halfDt * inverseMoment[i]) * tq[i];
-      x[i] = box_.wrap(x[i] + dt * v[i]);
-      if (tracked) largest.add(normSquared(box_.minimumImage(x[i] - x0[i])));
-    };
+    const DriftArrays arrays{p.position.data(),        p.velocity.data(),      p.angularVelocity.data(),
+                             p.force.data(),           p.torque.data(),        positionAtBuild_.data(),
+                             inverseMass_.data(),      inverseMoment_.data()};
     // With a team, each thread takes the block of rows it swept in the last force evaluation (its
     // particles are in its cache); the reduction is order-independent, so any split gives the
     // same result.
     const std::vector<std::size_t>& blocks = buffers_.blockStart;
     const int threads = omp_get_max_threads();
-    if (threads > 1 && blocks.size() == static_cast<std::size_t>(threads) + 1 &&
-        blocks.back() == static_cast<std::size_t>(n)) {
+    if (threads <= 1) {
+      kickAndDriftRange(arrays, box_, tracked, dt, 0, n, displacement2);
+    } else if (blocks.size() == static_cast<std::size_t>(threads) + 1 && blocks.back() == static_cast<std::size_t>(n)) {
 #pragma omp parallel num_threads(threads) reduction(largestTwo : displacement2)
       {
         const int t = omp_get_thread_num();
         const bool own = omp_get_num_threads() == threads;
         const auto begin = static_cast<std::int64_t>(own ? blocks[t] : 0);
         const auto end = own ? static_cast<std::int64_t>(blocks[t + 1]) : (t == 0 ? n : 0);
-        for (std::int64_t i = begin; i < end; ++i) integrate(i, displacement2);
+        kickAndDriftRange(arrays, box_, tracked, dt, begin, end, displacement2);
       }
     } else {
-#pragma omp parallel for schedule(static) reduction(largestTwo : displacement2)
-      for (std::int64_t i = 0; i < n; ++i) integrate(i, displacement2);
+#pragma omp parallel reduction(largestTwo : displacement2)
+      {
+        // the static schedule's contiguous chunks
+        const int t = omp_get_thread_num(), team = omp_get_num_threads();
+        const std::int64_t chunk = n / team, extra = n % team;
+        const std::int64_t begin = t * chunk + std::min<std::int64_t>(t, extra);
+        const std::int64_t end = begin + chunk + (t < extra ? 1 : 0);
+        kickAndDriftRange(arrays, box_, tracked, dt, begin, end, displacement2);
+      }
     }
   }
   time_ += dt;
