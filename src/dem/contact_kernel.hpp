@@ -41,33 +41,32 @@ void dispatchLaws(NormalLaw n, RollingLaw r, CohesionLaw c, F&& f) {
 
 /// Work-balanced split of the rows [0, n) into one contiguous block per thread (block t:
 /// [start[t], start[t + 1])). The cost of a row is estimated from the lists and the positions at
-/// their build (all restored by a restart): kRowCost per row (body forces, row sums, kick) + 1
-/// per listed partner (the distance test) + kTouchingCost per pair touching at the build (gather,
-/// contact law, scatter) + kWallCost per wall entry. Threads 1.. also kick their block after the
-/// barrier: kKickCost per row of theirs; thread 0 kicks during its sweep: kInlineKickCost per row
-/// (the kick waits there on each row's completed sums). Deterministic for a list and a thread
-/// count. The costs were fitted to per-thread CPU samples of the contact phase on 2 threads,
-/// bubbling bed and settled bed (where the touching pairs are unevenly spread over the rows: the
-/// row-count split gave the second thread 1.8 x the first's samples in the bubbling bed, the first
-/// 1.15 x the second's in the settled bed). The inline kick was first taken as free; per-thread
-/// CPU time then showed block 0 at 1.3-1.4 x block 1 (+ its kick) in the bubbling bed and 1.2 x
-/// in the settled bed; with kInlineKickCost = 1.5 both were within 0.95-1.05.
+/// their build (all restored by a restart): kRowCost per row (body forces, row sums) + 1 per
+/// listed partner (the distance test) + kTouchingCost per pair touching at the build (gather,
+/// contact law, scatter) + kWallCost per wall entry + kKickCost (the closing half kick, which every
+/// thread applies during its sweep to the rows whose forces are then final; PartnerBuffers).
+/// Deterministic for a list and a thread count. The costs were fitted to per-thread CPU samples
+/// of the contact phase on 2 threads, bubbling bed and settled bed (where the touching pairs are
+/// unevenly spread over the rows: the row-count split gave the second thread 1.8 x the first's
+/// samples in the bubbling bed, the first 1.15 x the second's in the settled bed); the inline kick
+/// was first taken as free, and per-thread CPU time then showed the kicking block at 1.3-1.4 x the
+/// others in the bubbling bed, 1.2 x in the settled bed; with 1.5 both were within 0.95-1.05.
+/// (Until session 12 only thread 0 kicked inline and the others after the barrier, 1.0 per row:
+/// the bubbling bed's second thread then spent 70-110 us per step on its kicks and the buffer
+/// merge while the first one waited.)
 struct BlockSplit {
-  static constexpr double kRowCost = 1.0, kTouchingCost = 2.5, kWallCost = 1.0, kKickCost = 1.0,
-                          kInlineKickCost = 1.5;
+  static constexpr double kRowCost = 1.0, kTouchingCost = 2.5, kWallCost = 1.0, kKickCost = 1.5;
   static void compute(const std::uint32_t* rowStart, const std::uint32_t* touchingStart,
                       const std::uint32_t* wallRowStart, std::size_t n, int team, std::vector<std::size_t>& start) {
     start.assign(static_cast<std::size_t>(team) + 1, 0);
     start[team] = n;
     if (team <= 1 || n == 0) return;
-    // cumulative cost of rows [0, i): sweep only (thread 0), and sweep + kick (threads 1..)
-    auto sweep = [&](std::size_t i) {
-      return kRowCost * static_cast<double>(i) + static_cast<double>(rowStart[i]) +
+    // cumulative cost of rows [0, i)
+    auto cost = [&](std::size_t i) {
+      return (kRowCost + kKickCost) * static_cast<double>(i) + static_cast<double>(rowStart[i]) +
              (touchingStart ? kTouchingCost * static_cast<double>(touchingStart[i]) : 0.0) +
              (wallRowStart ? kWallCost * static_cast<double>(wallRowStart[i]) : 0.0);
     };
-    auto withKick = [&](std::size_t i) { return sweep(i) + kKickCost * static_cast<double>(i); };
-    const double others = static_cast<double>(team - 1);
     auto firstRow = [&](auto&& reached) {  // first row where `reached` holds (it is monotone)
       std::size_t lo = 0, hi = n;
       while (lo < hi) {
@@ -77,13 +76,9 @@ struct BlockSplit {
       }
       return lo;
     };
-    // end of block 0 (sweep + inline kick): where its cost reaches the share of each other thread
-    start[1] = firstRow([&](std::size_t i) {
-      return sweep(i) + kInlineKickCost * static_cast<double>(i) >= (withKick(n) - withKick(i)) / others;
-    });
-    const double base = withKick(start[1]), share = (withKick(n) - base) / others;
-    for (int t = 2; t < team; ++t)
-      start[t] = std::max(start[t - 1], firstRow([&](std::size_t i) { return withKick(i) - base >= (t - 1) * share; }));
+    const double share = cost(n) / static_cast<double>(team);
+    for (int t = 1; t < team; ++t)
+      start[t] = std::max(start[t - 1], firstRow([&](std::size_t i) { return cost(i) >= t * share; }));
   }
 };
 
@@ -98,13 +93,48 @@ inline void splitRowsAmongThreads(const NeighbourList& list, const WallContactLi
 /// Per-thread partner force buffers (threads 0..T-2) and the blocks of rows. Thread t's rows end
 /// at end_t = blockStart[t + 1] and only partners j >= end_t go to its buffer, so it holds indices
 /// [end_t, n) (entry j - end_t). The buffers are all zero between force evaluations.
+///
+/// A row whose particle is a partner in no earlier block (receives[i] == 0) has its final force
+/// when the sweep completes it (half list: the other contributions come from earlier rows of its
+/// own block), so every thread kicks such rows during its sweep; the rows that do receive
+/// (`received[t]`, ascending, from the list at its build: a superset of those touched) get the
+/// buffers added in thread order and their kick after the barrier.
 struct PartnerBuffers {
   std::vector<std::vector<Vec3>> force, torque;
   std::vector<std::uint32_t> lo, hi;  // touched range per thread (particle indices)
   std::vector<std::size_t> blockStart;
+  std::vector<std::uint8_t> receives;                // per particle: listed by a row of an earlier block
+  std::vector<std::vector<std::uint32_t>> received;  // per thread: its rows that receive
+  std::uint64_t receiversOfList = ~std::uint64_t{0};  // NeighbourList::version they were found for
+  std::vector<std::size_t> receiversOfBlocks;         // and blockStart
   std::size_t blockEnd(int t) const { return blockStart[t + 1]; }
+  void findReceivers(const NeighbourList& list, std::size_t n, int threads) {
+    receives.assign(n, 0);
+    received.resize(static_cast<std::size_t>(threads));
+    const std::uint32_t* rowStart = list.rowStart.data();
+    const std::uint32_t* partner = list.partner.data();
+    for (int t = 0; t + 1 < threads; ++t) {
+      const std::size_t end = blockEnd(t);
+      for (std::size_t i = blockStart[t]; i < end; ++i)
+        for (std::uint32_t k = rowStart[i + 1]; k > rowStart[i];) {  // ascending partners: the far ones last
+          const std::uint32_t j = partner[--k];
+          if (j < end) break;
+          receives[j] = 1;
+        }
+    }
+    for (int t = 0; t < threads; ++t) {
+      received[t].clear();
+      if (t > 0)
+        for (std::size_t i = blockStart[t]; i < blockEnd(t); ++i)
+          if (receives[i]) received[t].push_back(static_cast<std::uint32_t>(i));
+    }
+    receiversOfList = list.version;
+    receiversOfBlocks = blockStart;
+  }
   void prepare(int threads, std::size_t n, const NeighbourList& list, const WallContactList& wallList, bool withWalls) {
     splitRowsAmongThreads(list, wallList, withWalls, n, threads, blockStart);
+    if (threads > 1 && (list.version != receiversOfList || blockStart != receiversOfBlocks || receives.size() != n))
+      findReceivers(list, n, threads);
     const std::size_t t = threads > 1 ? threads - 1 : 0;
     force.resize(t);
     torque.resize(t);
@@ -280,7 +310,8 @@ struct BlockSweep {
   PeriodicBox box;
   Vec3 gravity;
   double dt, halfKick;
-  bool external, withWalls, kickHere;  // kickHere: the block's forces are final in the pass
+  bool external, withWalls, kickHere;  // kickHere: kick the rows whose forces are final in the pass
+  const std::uint8_t* deferKick = nullptr;  // rows kicked after the barrier instead (PartnerBuffers::receives)
   // This thread's block.
   std::size_t begin, end;
   Vec3* bufferForce;  // partners j >= end (entry j - end)
@@ -451,7 +482,7 @@ struct BlockSweep {
       wallContactsOfParticle<N, R, C>(*particles, *wallList, *table, *walls, dt, i);
     // Half list: all contributions to i come from rows <= i; in the first block none come from
     // other threads, so the force is final here and the kick can use it while it is in cache.
-    if (kickHere) {
+    if (kickHere && !(deferKick && deferKick[i])) {
       velocity[i] += (halfKick * inverseMass[i]) * force[i];
       angularVelocity[i] += (halfKick * inverseMoment[i]) * torque[i];
     }
@@ -466,6 +497,15 @@ struct BlockSweep {
     const double* __restrict const im = inverseMass;
     const double* __restrict const ii = inverseMoment;
     const double h = halfKick;
+    const std::uint8_t* const defer = deferKick;
+    if (defer) {
+      for (std::size_t q = from; q < to; ++q)
+        if (!defer[q]) {
+          v[q] += (h * im[q]) * f[q];
+          w[q] += (h * ii[q]) * tq[q];
+        }
+      return;
+    }
     for (std::size_t q = from; q < to; ++q) {
       v[q] += (h * im[q]) * f[q];
       w[q] += (h * ii[q]) * tq[q];
@@ -599,11 +639,7 @@ struct BlockSweep {
         torque[i] += b.rowTorque[i - rb];
       }
     scatterWalls(rb);
-    if (kickHere)
-      for (std::size_t i = rb; i < re; ++i) {
-        velocity[i] += (halfKick * inverseMass[i]) * force[i];
-        angularVelocity[i] += (halfKick * inverseMoment[i]) * torque[i];
-      }
+    if (kickHere) kickRange(rb, re);
   }
 
   /// The rows [rb, re) (candidates [base, base + count), count <= capacity): owners, gather,
@@ -777,7 +813,8 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
     sweep.bufferTorque = t < team - 1 ? buffers.torque[t].data() : nullptr;
     sweep.touchedLo = static_cast<std::uint32_t>(n);
     sweep.touchedHi = 0;
-    sweep.kickHere = t == 0 && halfKick != 0.0;
+    sweep.kickHere = halfKick != 0.0;
+    sweep.deferKick = t > 0 ? buffers.receives.data() : nullptr;
     sweep.batch = &batch;
     sweep.wallBatch = &wallBatch;
     sweep.run();
@@ -788,22 +825,21 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
     }
     if (team > 1) {
 #pragma omp barrier
-      // Add the partner buffers in thread order, each thread over its own block.
-      for (int s = 0; s < team - 1; ++s) {
-        const std::size_t from = std::max<std::size_t>(begin, buffers.lo[s]);
-        const std::size_t to = std::min<std::size_t>(end, buffers.hi[s]);
-        const std::size_t offset = buffers.blockEnd(s);
-        Vec3* fs = buffers.force[s].data();
-        Vec3* ts = buffers.torque[s].data();
-        for (std::size_t i = from; i < to; ++i) {
-          force[i] += fs[i - offset];
-          torque[i] += ts[i - offset];
-          fs[i - offset] = Vec3{};
-          ts[i - offset] = Vec3{};
+      // Each thread adds the partner buffers of the threads before it to its receiving rows, in
+      // thread order (entries outside a buffer's touched range hold zero and are left out), and
+      // kicks them.
+      if (t > 0)
+        for (const std::uint32_t i : buffers.received[t]) {
+          for (int s = 0; s < t; ++s) {
+            if (i < buffers.lo[s] || i >= buffers.hi[s]) continue;
+            const std::size_t e = i - buffers.blockEnd(s);
+            force[i] += buffers.force[s][e];
+            torque[i] += buffers.torque[s][e];
+            buffers.force[s][e] = Vec3{};
+            buffers.torque[s][e] = Vec3{};
+          }
+          if (halfKick != 0.0) kick(i);
         }
-      }
-      if (t > 0 && halfKick != 0.0)
-        for (std::size_t i = begin; i < end; ++i) kick(i);
     }
   }
 }

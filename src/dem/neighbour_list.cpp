@@ -180,6 +180,7 @@ template <bool Periodic, bool Count>
 
 void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Vec3& boxMin, const Vec3& boxMax,
                           double skin, const std::vector<std::int64_t>& previousIndex, bool withRollingHistory) {
+  ++version;
   const std::size_t n = p.size();
   double maxRadius = 0.0;
   for (double r : p.radius) maxRadius = std::max(maxRadius, r);
@@ -354,6 +355,7 @@ void NeighbourList::save(BinaryWriter& out) const {
 }
 
 void NeighbourList::load(BinaryReader& in) {
+  ++version;
   rowStart = in.getVector<std::uint32_t>();
   partner = in.getVector<std::uint32_t>();
   tangentialHistory = in.getVector<Vec3>();

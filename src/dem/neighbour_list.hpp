@@ -25,6 +25,9 @@ class NeighbourList {
   /// saved: counted by build() and, after load(), by countTouching(); empty on one thread). The
   /// force loop splits its rows among threads by the work this predicts (BlockSplit).
   std::vector<std::uint32_t> touchingStart;
+  /// Incremented by every build() and load(): who keeps data derived from the list knows when to
+  /// derive it again.
+  std::uint64_t version = 0;
 
   /// Rebuilds the list for `p`. `previousIndex[k]` is the index particle k had at the previous
   /// build (-1 for new particles); histories of pairs that persist are copied (sign flipped when

@@ -469,6 +469,8 @@ std::size_t System::memoryBytes() const {
             wallList_.force.capacity() + wallList_.point.capacity()) *
                sizeof(Vec3);
   for (const auto& b : buffers_.force) bytes += 2 * b.capacity() * sizeof(Vec3);
+  bytes += buffers_.receives.capacity();
+  for (const auto& r : buffers_.received) bytes += r.capacity() * sizeof(std::uint32_t);
   bytes += (inverseMass_.capacity() + inverseMoment_.capacity()) * sizeof(double);
   return bytes;
 }

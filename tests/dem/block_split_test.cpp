@@ -16,14 +16,13 @@ std::vector<std::uint32_t> offsets(const std::vector<std::uint32_t>& perRow) {
   return start;
 }
 
-// The cost model of BlockSplit, row by row: thread 0 sweeps and kicks inline, the others sweep
-// and kick after the barrier.
+// The cost model of BlockSplit, row by row: every thread sweeps its rows and kicks them.
 double blockCost(const std::vector<std::uint32_t>& partners, const std::vector<std::uint32_t>& touching,
-                 const std::vector<std::uint32_t>& walls, std::size_t from, std::size_t to, bool first) {
+                 const std::vector<std::uint32_t>& walls, std::size_t from, std::size_t to) {
   double cost = 0.0;
   for (std::size_t i = from; i < to; ++i)
     cost += BlockSplit::kRowCost + partners[i] + BlockSplit::kTouchingCost * touching[i] +
-            BlockSplit::kWallCost * walls[i] + (first ? BlockSplit::kInlineKickCost : BlockSplit::kKickCost);
+            BlockSplit::kWallCost * walls[i] + BlockSplit::kKickCost;
   return cost;
 }
 
@@ -47,7 +46,7 @@ TEST(BlockSplit, BlocksCoverTheRowsAndCarryEqualCost) {
     std::vector<double> cost(team);
     for (int t = 0; t < team; ++t) {
       ASSERT_LE(start[t], start[t + 1]);
-      cost[t] = blockCost(partners, touching, walls, start[t], start[t + 1], t == 0);
+      cost[t] = blockCost(partners, touching, walls, start[t], start[t + 1]);
     }
     // One row costs at most ~20 units of ~2.3e5 in all: equal to 1e-3 of a share.
     double mean = 0.0;
@@ -63,8 +62,8 @@ TEST(BlockSplit, SameInputGivesTheSameBlocks) {
   BlockSplit::compute(rowStart.data(), touchingStart.data(), nullptr, partners.size(), 2, a);
   BlockSplit::compute(rowStart.data(), touchingStart.data(), nullptr, partners.size(), 2, b);
   EXPECT_EQ(a, b);
-  // Uniform rows: block 0 (inline kick 1.5) is shorter than block 1 (kick 1 after the barrier).
-  EXPECT_LT(a[1], partners.size() / 2);
+  // Uniform rows: two blocks of equal length.
+  EXPECT_EQ(a[1], partners.size() / 2);
 }
 
 }  // namespace

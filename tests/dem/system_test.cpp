@@ -192,9 +192,11 @@ TEST(DemSystem, SameInputSameThreadsGivesBitIdenticalState) {
   setThreadCount(1);
 }
 
-// The per-thread partner buffers change only the summation order: two threads agree with one
-// thread to round-off over a short run (before chaotic divergence amplifies it).
-TEST(DemSystem, TwoThreadsAgreeWithOneThreadToRoundOff) {
+// The per-thread partner buffers change only the summation order: two and three threads agree
+// with one thread to round-off over a short run (before chaotic divergence amplifies it). With
+// three, the last block receives partner forces from two earlier blocks, and every block kicks
+// the rows that receive nothing during its sweep (PartnerBuffers).
+TEST(DemSystem, TwoAndThreeThreadsAgreeWithOneThreadToRoundOff) {
   // Touching lattice with random velocities: contacts everywhere within a few steps.
   const std::string yaml = materialsYaml("hertz_mindlin", 0.5, 0.5) + R"(
 domain: {min: [0, 0, 0], max: [0.014, 0.014, 0.03]}
@@ -203,30 +205,32 @@ walls:
 insertion:
   - {type: lattice, origin: [0.001, 0.001, 0.001], spacing: 0.002, nx: 7, ny: 7, nz: 7, diameter: 0.002}
 )";
-  setThreadCount(1);
-  DemCase one(yaml, {0, 0, -9.81});
-  setThreadCount(2);
-  DemCase two(yaml, {0, 0, -9.81});
-  for (System* sys : {one.system.get(), two.system.get()}) {
-    Random rng(5);
-    for (Vec3& v : sys->particles().velocity) v = {rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1)};
-    sys->refresh();
-  }
-  for (int s = 0; s < 100; ++s) {
+  for (int team : {2, 3}) {
     setThreadCount(1);
-    one->step(2e-5);
-    setThreadCount(2);
-    two->step(2e-5);
+    DemCase one(yaml, {0, 0, -9.81});
+    setThreadCount(team);
+    DemCase many(yaml, {0, 0, -9.81});
+    for (System* sys : {one.system.get(), many.system.get()}) {
+      Random rng(5);
+      for (Vec3& v : sys->particles().velocity) v = {rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1)};
+      sys->refresh();
+    }
+    for (int s = 0; s < 100; ++s) {
+      setThreadCount(1);
+      one->step(2e-5);
+      setThreadCount(team);
+      many->step(2e-5);
+    }
+    setThreadCount(1);
+    ASSERT_EQ(one->particles().size(), many->particles().size());
+    EXPECT_GT(one->contactStatistics().particleContacts, 500);
+    double maxDifference = 0.0;
+    for (std::size_t i = 0; i < one->particles().size(); ++i) {
+      ASSERT_EQ(one->particles().id[i], many->particles().id[i]);
+      maxDifference = std::max(maxDifference, norm(one->particles().velocity[i] - many->particles().velocity[i]));
+    }
+    EXPECT_LT(maxDifference, 1e-9) << team << " threads";  // velocities ~0.1 m/s
   }
-  setThreadCount(1);
-  ASSERT_EQ(one->particles().size(), two->particles().size());
-  EXPECT_GT(one->contactStatistics().particleContacts, 500);
-  double maxDifference = 0.0;
-  for (std::size_t i = 0; i < one->particles().size(); ++i) {
-    ASSERT_EQ(one->particles().id[i], two->particles().id[i]);
-    maxDifference = std::max(maxDifference, norm(one->particles().velocity[i] - two->particles().velocity[i]));
-  }
-  EXPECT_LT(maxDifference, 1e-9);  // velocities ~0.1 m/s
 }
 
 TEST(DemSystem, RestartContinuesBitIdentically) {
