@@ -480,15 +480,14 @@ struct BlockSweep {
     }
     if (withWalls && wallRowStart[i] != wallRowStart[i + 1])
       wallContactsOfParticle<N, R, C>(*particles, *wallList, *table, *walls, dt, i);
-    // Half list: all contributions to i come from rows <= i; in the first block none come from
-    // other threads, so the force is final here and the kick can use it while it is in cache.
-    if (kickHere && !(deferKick && deferKick[i])) {
-      velocity[i] += (halfKick * inverseMass[i]) * force[i];
-      angularVelocity[i] += (halfKick * inverseMoment[i]) * torque[i];
-    }
+    // Half list: all contributions to i come from rows <= i; unless a row of an earlier block
+    // lists i (deferKick), none come from other threads, so the force is final here and the kick
+    // can use it while it is in cache.
+    if (kickHere) kickRange(i, i + 1);
   }
 
-  /// The closing half kick of the particles [from, to), whose forces are final.
+  /// The closing half kick of the particles [from, to) whose forces are final (all but the
+  /// deferred ones).
   [[gnu::always_inline]] void kickRange(std::size_t from, std::size_t to) {
     Vec3* __restrict const v = velocity;
     Vec3* __restrict const w = angularVelocity;

@@ -276,21 +276,16 @@ void kickAndDrift(const DriftArrays& a, const PeriodicBox& box, double dt, std::
   const double* __restrict inverseMoment = a.inverseMoment;
   const double halfDt = 0.5 * dt;
   const PeriodicBox localBox = box;
-  double first = largest.first, second = largest.second;
+  LargestTwo local = largest;  // (in registers, not through the reference)
   for (std::int64_t i = begin; i < end; ++i) {
     const Vec3 vi = v[i] + (halfDt * inverseMass[i]) * f[i];
     v[i] = vi;
     w[i] += (halfDt * inverseMoment[i]) * tq[i];
     const Vec3 xi = Periodic ? localBox.wrap(x[i] + dt * vi) : x[i] + dt * vi;
     x[i] = xi;
-    if constexpr (Tracked) {
-      const double d2 = normSquared(Periodic ? localBox.minimumImage(xi - x0[i]) : xi - x0[i]);
-      second = std::max(second, std::min(first, d2));  // LargestTwo::add, in registers
-      first = std::max(first, d2);
-    }
+    if constexpr (Tracked) local.add(normSquared(Periodic ? localBox.minimumImage(xi - x0[i]) : xi - x0[i]));
   }
-  largest.first = first;
-  largest.second = second;
+  largest = local;
 }
 
 void kickAndDriftRange(const DriftArrays& a, const PeriodicBox& box, bool tracked, double dt, std::int64_t begin,
