@@ -73,10 +73,15 @@ template <class Body>
 inline void runPlaneTeam(TeamTuner& tuner, int maxTeam, int planes, Body&& body) {
   const int team = tuner.pick(maxTeam);
   const double started = TeamTuner::now();
-#pragma omp parallel num_threads(team) if (team > 1)
-  {
+  auto member = [&]() {
     const PlaneSlab slab = PlaneSlab::ofCallingMember(planes, team);
     body(slab);
+  };
+  if (team > 1) {
+#pragma omp parallel num_threads(team)
+    member();
+  } else {
+    member();  // not a team of one: its barriers would each cost a system call (core/parallel.hpp)
   }
   tuner.record(team, TeamTuner::now() - started);
 }

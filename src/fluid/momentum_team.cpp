@@ -180,8 +180,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
   bool converged[3] = {true, true, true};
   bool inY[3] = {false, false, false};  // the result lies in precY_[c]
   const int g = grid_.ghosts;
-#pragma omp parallel num_threads(team) if (team > 1)
-  {
+  auto member = [&]() {
     const PlaneSlab slab = PlaneSlab::ofCallingMember(nz, team);
     // Flat range [begin, end) of this member's planes of a field (ghost rows included; the first
     // and last members also take the ghost planes): element-wise work on whole arrays.
@@ -299,6 +298,12 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
         converged[c] = conv[c];
         inY[c] = inYLocal[c];
       }
+  };
+  if (team > 1) {
+#pragma omp parallel num_threads(team)
+    member();
+  } else {
+    member();  // not a team of one: its barriers would each cost a system call (core/parallel.hpp)
   }
   momentumTeam_.record(team, TeamTuner::now() - started);
   for (int c = 0; c < 3; ++c) {

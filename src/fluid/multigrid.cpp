@@ -931,8 +931,7 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
   double* p = p_.data();
   double* q = q_.data();
   const double* zeros = zeros_.data();
-#pragma omp parallel num_threads(team) if (team > 1)
-  {
+  auto member = [&]() {
     const int t = team > 1 ? omp_get_thread_num() : 0;
     const int members = team > 1 ? omp_get_num_threads() : 1;  // fewer than asked: still all planes
     const std::int64_t lb = static_cast<std::int64_t>(ny) * (nz * t / members);
@@ -1083,6 +1082,12 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
       result.relativeResidual = relative;
       result.converged = relative <= tol;
     }
+  };
+  if (team > 1) {
+#pragma omp parallel num_threads(team)
+    member();
+  } else {
+    member();  // not a team of one: its barriers would each cost a system call (core/parallel.hpp)
   }
   return result;
 }
