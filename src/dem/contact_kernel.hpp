@@ -794,8 +794,7 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
     velocity[i] += (halfKick * inverseMass[i]) * force[i];
     angularVelocity[i] += (halfKick * inverseMoment[i]) * torque[i];
   };
-#pragma omp parallel num_threads(threads)
-  {
+  auto member = [&]() {
     const int t = omp_get_thread_num();
     const int team = omp_get_num_threads();
 #pragma omp single
@@ -840,6 +839,12 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
           if (halfKick != 0.0) kick(i);
         }
     }
+  };
+  if (threads > 1) {
+#pragma omp parallel num_threads(threads)
+    member();
+  } else {
+    member();  // not a team of one: its barriers would each cost a system call (core/parallel.hpp)
   }
 }
 
