@@ -22,6 +22,20 @@ inline bool runsOnCallingThread(std::int64_t n) {
   return n < kMinParallelLoop || omp_get_max_threads() == 1 || omp_in_parallel();
 }
 
+/// Runs member() on every member of a team of `team` threads; a team of one is the calling
+/// thread itself (no region: see runsOnCallingThread). The members ask omp_get_thread_num() and
+/// omp_get_num_threads() as usual (0 and 1 outside a region); their barriers outside a region are
+/// free.
+template <class Member>
+inline void runTeam(int team, Member&& member) {
+  if (team > 1) {
+#pragma omp parallel num_threads(team)
+    member();
+  } else {
+    member();
+  }
+}
+
 template <class Body>
 inline void parallelFor(std::int64_t n, Body&& body) {
   if (runsOnCallingThread(n)) {

@@ -840,12 +840,7 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
         }
     }
   };
-  if (threads > 1) {
-#pragma omp parallel num_threads(threads)
-    member();
-  } else {
-    member();  // not a team of one: its barriers would each cost a system call (core/parallel.hpp)
-  }
+  runTeam(threads, member);  // (a team of one: no region, core/parallel.hpp)
 }
 
 }  // namespace gf::dem

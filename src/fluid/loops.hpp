@@ -77,12 +77,7 @@ inline void runPlaneTeam(TeamTuner& tuner, int maxTeam, int planes, Body&& body)
     const PlaneSlab slab = PlaneSlab::ofCallingMember(planes, team);
     body(slab);
   };
-  if (team > 1) {
-#pragma omp parallel num_threads(team)
-    member();
-  } else {
-    member();  // not a team of one: its barriers would each cost a system call (core/parallel.hpp)
-  }
+  runTeam(team, member);  // (a team of one: no region, core/parallel.hpp)
   tuner.record(team, TeamTuner::now() - started);
 }
 

@@ -299,12 +299,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
         inY[c] = inYLocal[c];
       }
   };
-  if (team > 1) {
-#pragma omp parallel num_threads(team)
-    member();
-  } else {
-    member();  // not a team of one: its barriers would each cost a system call (core/parallel.hpp)
-  }
+  runTeam(team, member);  // (a team of one: no region, core/parallel.hpp)
   momentumTeam_.record(team, TeamTuner::now() - started);
   for (int c = 0; c < 3; ++c) {
     if (inY[c]) u_[c].data().swap(precY_[c].data());

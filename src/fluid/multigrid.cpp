@@ -1083,12 +1083,7 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
       result.converged = relative <= tol;
     }
   };
-  if (team > 1) {
-#pragma omp parallel num_threads(team)
-    member();
-  } else {
-    member();  // not a team of one: its barriers would each cost a system call (core/parallel.hpp)
-  }
+  runTeam(team, member);  // (a team of one: no region, core/parallel.hpp)
   return result;
 }
 
