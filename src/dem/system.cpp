@@ -331,11 +331,7 @@ void System::step(double dt) {
     } else {
 #pragma omp parallel reduction(largestTwo : displacement2)
       {
-        // the static schedule's contiguous chunks
-        const int t = omp_get_thread_num(), team = omp_get_num_threads();
-        const std::int64_t chunk = n / team, extra = n % team;
-        const std::int64_t begin = t * chunk + std::min<std::int64_t>(t, extra);
-        const std::int64_t end = begin + chunk + (t < extra ? 1 : 0);
+        const auto [begin, end] = threadBlock(n, omp_get_thread_num(), omp_get_num_threads(), nullptr);
         kickAndDriftRange(arrays, box_, tracked, dt, begin, end, displacement2);
       }
     }
