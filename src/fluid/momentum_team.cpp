@@ -180,6 +180,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
   bool converged[3] = {true, true, true};
   bool inY[3] = {false, false, false};  // the result lies in precY_[c]
   const int g = grid_.ghosts;
+  gf::TeamBarrier barrier(team);  // (one per Jacobi sweep: a spin barrier, core/parallel.hpp)
   auto member = [&]() {
     const PlaneSlab slab = PlaneSlab::ofCallingMember(nz, team);
     // Flat range [begin, end) of this member's planes of a field (ghost rows included; the first
@@ -195,7 +196,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
       const int t = team > 1 ? omp_get_thread_num() : 0;
       epsRange(b, e, memberRange[2 * t], memberRange[2 * t + 1]);
     }
-#pragma omp barrier
+    barrier.wait();
     // Convection and right-hand sides in one pass; ||b||^2 per line into teamPartial_[c][0].
     double* const bPartial[3] = {teamPartial_[0][0].data(), teamPartial_[1][0].data(), teamPartial_[2][0].data()};
     convectAndAssemble(slab, dt, g1, g2, e1, e2, bPartial);
@@ -206,7 +207,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
                         coupling_.voidFraction, coupling_.dragCoefficient, c, mu_, timeCoeff, closure,
                         slab.lineBegin(pts), slab.lineEnd(pts));
     }
-#pragma omp barrier  // convection read u^n of the neighbouring planes
+    barrier.wait();  // convection read u^n of the neighbouring planes
     for (int c = 0; c < 3; ++c) {
       // Initial guess (solveHelmholtz): 2 u^n - u^{n-1} + last step's extrapolation error;
       // u^{n-1} <- u^n everywhere (ghosts included).
@@ -232,7 +233,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
       const auto& pts = x.points();
       fillVelocityStencilGhostsSlab(x, c, bc_, slab.k0, slab.planeEnd(pts), slab.first, slab.last);
     }
-#pragma omp barrier
+    barrier.wait();
     // Every member takes the same decisions from the same line sums (no further communication).
     double contraction = std::numeric_limits<double>::infinity();
     {
@@ -266,7 +267,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
                         teamPartial_[c][parity].data());
         fillVelocityStencilGhostsSlab(y, c, bc_, slab.k0, slab.planeEnd(pts), slab.first, slab.last);
       }
-#pragma omp barrier
+      barrier.wait();
       for (int c = 0; c < 3; ++c) {
         if (!active[c]) continue;
         // Residual of x (before this sweep's update): converged -> keep x, as solveHelmholtz.

@@ -931,6 +931,7 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
   double* p = p_.data();
   double* q = q_.data();
   const double* zeros = zeros_.data();
+  gf::TeamBarrier barrier(team);  // (~96 per call: a spin barrier, core/parallel.hpp)
   auto member = [&]() {
     const int t = team > 1 ? omp_get_thread_num() : 0;
     const int members = team > 1 ? omp_get_num_threads() : 1;  // fewer than asked: still all planes
@@ -962,12 +963,12 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
     auto vcycle0 = [&]() {
       if (!earlySweep) firstHalfSweepFromZero(L, lb, le);
       halfSweep(1);
-#pragma omp barrier
+      barrier.wait();
       for (int s = 1; s < kPreSmooth; ++s) {
         halfSweep(0);
-#pragma omp barrier
+        barrier.wait();
         halfSweep(1);
-#pragma omp barrier
+        barrier.wait();
       }
       for (int K = K0; K < K1; ++K)
         for (int J = 0; J < cy; ++J) {
@@ -989,9 +990,9 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
               }
             }
         }
-#pragma omp barrier
+      barrier.wait();
       if (t == 0) vcycle(1);
-#pragma omp barrier
+      barrier.wait();
       for (std::int64_t line = lb; line < le; ++line) {
         const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
         const std::size_t cbase = static_cast<std::size_t>(cx) * (j / f[1] + static_cast<std::size_t>(cy) * (k / f[2]));
@@ -999,14 +1000,14 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
         prolongLine(z + base, C.x.data() + cbase, nx, f[0]);
       }
       for (int s = 0; s < kPostSmooth; ++s) {
-#pragma omp barrier
+        barrier.wait();
         halfSweep(1);
-#pragma omp barrier
+        barrier.wait();
         halfSweep(0);
       }
       // r . z of the own lines (the last half-sweep wrote only own values of z).
       for (std::int64_t line = lb; line < le; ++line) teamSums_[3][static_cast<std::size_t>(line)] = lineDot(r, z, line);
-#pragma omp barrier
+      barrier.wait();
       return sum(3);
     };
     if (permuted) {
@@ -1018,7 +1019,7 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
         xi[c] = xc[caller[c]];
         bi[c] = bc[caller[c]];
       }
-#pragma omp barrier  // (A x reads the neighbouring members' planes of x)
+      barrier.wait();  // (A x reads the neighbouring members' planes of x)
     }
     // r = b - A x; ||b||, ||r||.
     for (std::int64_t line = lb; line < le; ++line) {
@@ -1029,7 +1030,7 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
       teamSums_[1][static_cast<std::size_t>(line)] = lineDot(r, r, line);
     }
     if (earlySweep) firstHalfSweepFromZero(L, lb, le);  // vcycle0's first step
-#pragma omp barrier
+    barrier.wait();
     const double bnorm = std::sqrt(sum(0));
     double rnorm = std::sqrt(sum(1));
     int iterations = 0;
@@ -1041,12 +1042,12 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
       for (std::int64_t line = lb; line < le; ++line)
         std::copy(z + nx * line, z + nx * (line + 1), p + nx * line);
       for (int it = 1; it <= maxIterations; ++it) {
-#pragma omp barrier  // p complete
+        barrier.wait();  // p complete
         for (std::int64_t line = lb; line < le; ++line) {
           applyLine(L, p, q + nx * line, static_cast<int>(line % ny), static_cast<int>(line / ny), zeros);
           teamSums_[2][static_cast<std::size_t>(line)] = lineDot(p, q, line);
         }
-#pragma omp barrier
+        barrier.wait();
         const double pq = sum(2);
         if (pq <= 0.0) break;
         const double alpha = rz / pq;
@@ -1059,7 +1060,7 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
           teamSums_[1][static_cast<std::size_t>(line)] = lineDot(r, r, line);
         }
         if (earlySweep) firstHalfSweepFromZero(L, lb, le);  // vcycle0's first step
-#pragma omp barrier
+        barrier.wait();
         rnorm = std::sqrt(sum(1));
         iterations = it;
         relative = rnorm / bnorm;
