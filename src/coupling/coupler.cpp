@@ -242,7 +242,7 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   fillGhosts(fields.voidFraction);
 }
 
-void Coupler::packSamples(const FluidView& fluid, const CouplingFields& fields) {
+void Coupler::packSamples(const FluidView& fluid, const CouplingFields& fields, bool planesPerThread) {
   // channels: u_f (3), eps (1), then grad p, div tau, vorticity (3 each) where a force needs them
   const ForceSwitches& w = settings_.forces;
   const Field* src[13];
@@ -264,25 +264,60 @@ void Coupler::packSamples(const FluidView& fluid, const CouplingFields& fields) 
     for (int a = 0; a < 3; ++a) src[k++] = &vorticity_[a];
   }
   sampleChannels_ = k;
+  for (int ch = 0; ch < k; ++ch) sampleSource_[ch] = src[ch]->data().data();
   const std::size_t cells = solidFraction_.data().size();
+  if (planesPerThread) {
+    // each thread packs the planes its own particles read into its buffer (forcePass)
+    threadSamples_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+    for (auto& buffer : threadSamples_) buffer.resize(cells * k);
+    return;
+  }
   samples_.resize(cells * k);
-  double* out = samples_.data();
-  const double* in[13];
-  for (int ch = 0; ch < k; ++ch) in[ch] = src[ch]->data().data();
-  // interior cells only: every stencil and interpolation maps its cells into the interior; rows
-  // in parallel (disjoint writes), the standard channel count fixed at compile time
+  // rows in parallel (disjoint writes)
   const auto& n = topology_.grid.cells;
+  forEachIndex(static_cast<std::int64_t>(n[2]) * n[1], static_cast<std::int64_t>(n[0]) * k, [&](std::int64_t kj) {
+    packSampleRows(samples_.data(), kj, kj + 1);
+  });
+  if (settings_.fluxVelocity) scaleToFluxVelocity(fields.voidFraction);
+}
+
+void Coupler::packSampleRows(double* out, std::int64_t rowBegin, std::int64_t rowEnd) const {
+  // interior cells only: every stencil and interpolation maps its cells into the interior; the
+  // standard channel count fixed at compile time. Row kj = j + n_y k.
+  const auto& n = topology_.grid.cells;
+  const double* const* in = sampleSource_;
   auto pack = [&]<int Channels>(std::integral_constant<int, Channels>) {
-    const int kc = Channels > 0 ? Channels : k;
-    forEachIndex(static_cast<std::int64_t>(n[2]) * n[1], static_cast<std::int64_t>(n[0]) * kc, [&](std::int64_t kj) {
+    const int kc = Channels > 0 ? Channels : sampleChannels_;
+    for (std::int64_t kj = rowBegin; kj < rowEnd; ++kj) {
       const std::size_t row = topology_.flat(0, static_cast<int>(kj % n[1]), static_cast<int>(kj / n[1]));
       for (std::size_t q = row; q < row + static_cast<std::size_t>(n[0]); ++q)
         for (int ch = 0; ch < kc; ++ch) out[q * kc + ch] = in[ch][q];
-    });
+    }
   };
-  if (k == kStandardChannels) pack(std::integral_constant<int, kStandardChannels>{});
+  if (sampleChannels_ == kStandardChannels) pack(std::integral_constant<int, kStandardChannels>{});
   else pack(std::integral_constant<int, 0>{});
-  if (settings_.fluxVelocity) scaleToFluxVelocity(fields.voidFraction);
+}
+
+std::pair<int, int> Coupler::planesSampledBy(const dem::ParticleSet& particles, std::int64_t begin,
+                                             std::int64_t end) const {
+  // Trilinear sampling of a point in cell plane c reads planes c - 1 ... c + 1 (its lower cell
+  // is c - 1 or c; clamped to the interior in wall directions).
+  const int nz = topology_.grid.cells[2];
+  const double origin = topology_.grid.origin.z, inverse = topology_.inverseSpacing.z;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::int64_t p = begin; p < end; ++p) {
+    const double z = particles.position[static_cast<std::size_t>(p)].z;
+    lo = std::min(lo, z);
+    hi = std::max(hi, z);
+  }
+  if (!(lo <= hi)) return {0, nz};  // no particles, or NaN positions: all planes
+  auto plane = [&](double z) {
+    double s = std::floor((z - origin) * inverse);
+    if (!(s >= 0.0)) s = 0.0;
+    if (!(s <= nz - 1.0)) s = nz - 1.0;
+    return static_cast<int>(s);
+  };
+  return {std::max(plane(lo) - 1, 0), std::min(plane(hi) + 2, nz)};
 }
 
 void Coupler::scaleToFluxVelocity(const Field& eps) {
@@ -339,12 +374,13 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   [[maybe_unused]] const int channels = StandardChannels ? kStandardChannels : sampleChannels_;
   const int cP = StandardChannels ? 4 : gradPChannel_, cT = StandardChannels ? 7 : divTauChannel_,
             cW = StandardChannels ? -1 : vorticityChannel_;
-  const double* samples = samples_.data();
+  const bool planesPerThread = planesPerThread_;
   const Vec3 buoyancy = w.buoyancy ? force::buoyancy(rho, 1.0, gravity_) : Vec3{};  // per volume
   const TrilinearSampler sampler(topology_);
   constexpr int kBlock = 32;
   const auto n = static_cast<std::int64_t>(particles.size());
-  auto forceBlock = [&, rho, mu, epsFloor, dPrimFactor, k3](std::size_t begin, int count, std::array<double, 4>& sums) {
+  auto forceBlock = [&, rho, mu, epsFloor, dPrimFactor, k3](const double* samples, std::size_t begin, int count,
+                                                            std::array<double, 4>& sums) {
     double sum[4] = {sums[0], sums[1], sums[2], sums[3]};  // in registers, not through the reference
     double s[kBlock][13];
     if constexpr (Mode == InterpolationMode::Trilinear) {
@@ -428,8 +464,19 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   // the particle side of the momentum balance (updateMomentumBalance) summed on the way, per
   // thread block in particle order as sumsOverIndices would
   particleForceSums_ = sumsOverRanges<4>(n, [&](std::int64_t begin, std::int64_t end, std::array<double, 4>& sum) {
+    const double* samples = samples_.data();
+    if (planesPerThread) {
+      // The cell planes this thread's particles read, packed by this thread: no cache line of the
+      // buffer comes from the other core (the particles follow the DEM's split, the rows of a
+      // shared pack an equal split of the planes; the same values, bit for bit).
+      std::vector<double>& own = threadSamples_[static_cast<std::size_t>(omp_in_parallel() ? omp_get_thread_num() : 0)];
+      const auto [k0, k1] = planesSampledBy(particles, begin, end);
+      const std::int64_t ny = topology_.grid.cells[1];
+      packSampleRows(own.data(), ny * k0, ny * k1);
+      samples = own.data();
+    }
     for (std::int64_t p = begin; p < end; p += kBlock)
-      forceBlock(static_cast<std::size_t>(p), static_cast<int>(std::min<std::int64_t>(kBlock, end - p)), sum);
+      forceBlock(samples, static_cast<std::size_t>(p), static_cast<int>(std::min<std::int64_t>(kBlock, end - p)), sum);
   }, &particleBlocks_);
   particleForceSumsValid_ = true;
 }
@@ -457,7 +504,11 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
   if (w.viscousStress && !fluid.viscousStressDivergence[0]) {
     computeViscousStressDivergence(topology_, fluid.velocity, fluid.viscosity, divTau_);  // interior cells
   }
-  packSamples(fluid, fields);
+  // Per-thread packing (forcePass) for trilinear sampling, which reads the planes next to a
+  // particle's own (not across a periodic z boundary, not after the flux rescaling).
+  planesPerThread_ = settings_.interpolation == InterpolationMode::Trilinear && !settings_.fluxVelocity &&
+                     !topology_.periodic[2] && threadsForRanges(static_cast<std::int64_t>(n)) > 1;
+  packSamples(fluid, fields, planesPerThread_);
   for (auto* v : {&fluidVelocityAtParticle_, &slip_, &otherExchangedForce_}) v->resize(n);
   beta_.resize(n);
   if (w.virtualMass) alignPreviousSlip(particles);

@@ -18,6 +18,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/coupling_fields.hpp"
@@ -149,7 +150,11 @@ class Coupler {
   void load(BinaryReader& in);
 
  private:
-  void packSamples(const FluidView& fluid, const CouplingFields& fields);
+  void packSamples(const FluidView& fluid, const CouplingFields& fields, bool planesPerThread);
+  /// Packs the interior cells of rows [rowBegin, rowEnd) (row j + n_y k) of the sample channels.
+  void packSampleRows(double* out, std::int64_t rowBegin, std::int64_t rowEnd) const;
+  /// The cell planes [first, last) that trilinear sampling of particles [begin, end) reads.
+  std::pair<int, int> planesSampledBy(const dem::ParticleSet& particles, std::int64_t begin, std::int64_t end) const;
   void scaleToFluxVelocity(const Field& eps);
   static constexpr int kStandardChannels = 10;  // u, eps, grad p, div tau
   template <InterpolationMode Mode, bool StandardChannels, class Law>
@@ -199,6 +204,9 @@ class Coupler {
   Field divTau_[3];
   // fluid fields at cells, channel-interleaved for the particle loop (see packSamples)
   std::vector<double> samples_;
+  std::vector<std::vector<double>> threadSamples_;  // per thread: the planes its particles read
+  const double* sampleSource_[13] = {};             // the channels' fields (packSamples)
+  bool planesPerThread_ = false;
   int sampleChannels_ = 4, gradPChannel_ = -1, divTauChannel_ = -1, vorticityChannel_ = -1;
   DepositBuffers deposit_;
   std::vector<std::size_t> ghostTarget_, ghostSource_;  // ghost cell <- interior cell (fillGhosts)

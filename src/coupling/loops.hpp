@@ -47,6 +47,9 @@ inline double sumOverIndices(std::int64_t n, Body&& body) {
   return parallelSum(n, body);
 }
 
+/// The threads sumsOverRanges runs on for n indices.
+inline int threadsForRanges(std::int64_t n) { return n < kMinParallelWork ? 1 : omp_get_max_threads(); }
+
 /// N sums over [0, n), each thread's whole block handed over at once: body(begin, end, sums) adds
 /// the terms of indices [begin, end) in index order (the body may work through its block in
 /// pieces). On one thread (or for small n) one block [0, n); otherwise each thread sums its static
@@ -54,7 +57,7 @@ inline double sumOverIndices(std::int64_t n, Body&& body) {
 template <int N, class Body>
 inline std::array<double, N> sumsOverRanges(std::int64_t n, Body&& body, const std::vector<std::size_t>* blocks = nullptr) {
   std::array<double, N> total{};
-  const int threads = n < kMinParallelWork ? 1 : omp_get_max_threads();
+  const int threads = threadsForRanges(n);
   if (threads == 1) {
     body(std::int64_t{0}, n, total);
     return total;
