@@ -506,8 +506,13 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
   }
   // Per-thread packing (forcePass) for trilinear sampling, which reads the planes next to a
   // particle's own (not across a periodic z boundary, not after the flux rescaling).
+  // The buffers are whole-grid arrays (flat cell indices): at most kThreadSamplesBytes together.
+  constexpr double kThreadSamplesBytes = 256.0 * 1024 * 1024;
+  const int rangeThreads = threadsForRanges(static_cast<std::int64_t>(n));
+  const double bufferBytes = static_cast<double>(rangeThreads) * static_cast<double>(solidFraction_.data().size()) *
+                             13.0 * sizeof(double);  // (13: the most channels)
   planesPerThread_ = settings_.interpolation == InterpolationMode::Trilinear && !settings_.fluxVelocity &&
-                     !topology_.periodic[2] && threadsForRanges(static_cast<std::int64_t>(n)) > 1;
+                     !topology_.periodic[2] && rangeThreads > 1 && bufferBytes <= kThreadSamplesBytes;
   packSamples(fluid, fields, planesPerThread_);
   for (auto* v : {&fluidVelocityAtParticle_, &slip_, &otherExchangedForce_}) v->resize(n);
   beta_.resize(n);
