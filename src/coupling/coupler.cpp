@@ -310,13 +310,9 @@ std::pair<int, int> Coupler::planesSampledBy(const dem::ParticleSet& particles, 
     lo = std::min(lo, z);
     hi = std::max(hi, z);
   }
-  if (!(lo <= hi)) return {0, nz};  // no particles, or NaN positions: all planes
-  auto plane = [&](double z) {
-    double s = std::floor((z - origin) * inverse);
-    if (!(s >= 0.0)) s = 0.0;
-    if (!(s <= nz - 1.0)) s = nz - 1.0;
-    return static_cast<int>(s);
-  };
+  if (!(lo <= hi)) return {0, nz};  // no particles (or only NaN positions): all planes
+  // (clamped as a double: a particle far outside the grid stays within int)
+  auto plane = [&](double z) { return static_cast<int>(std::clamp(std::floor((z - origin) * inverse), 0.0, nz - 1.0)); };
   return {std::max(plane(lo) - 1, 0), std::min(plane(hi) + 2, nz)};
 }
 
@@ -469,7 +465,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       // The cell planes this thread's particles read, packed by this thread: no cache line of the
       // buffer comes from the other core (the particles follow the DEM's split, the rows of a
       // shared pack an equal split of the planes; the same values, bit for bit).
-      std::vector<double>& own = threadSamples_[static_cast<std::size_t>(omp_in_parallel() ? omp_get_thread_num() : 0)];
+      std::vector<double>& own = threadSamples_[static_cast<std::size_t>(omp_get_thread_num())];  // (0 outside a region)
       const auto [k0, k1] = planesSampledBy(particles, begin, end);
       const std::int64_t ny = topology_.grid.cells[1];
       packSampleRows(own.data(), ny * k0, ny * k1);
