@@ -272,7 +272,17 @@ inline void wallContactsOfParticle(ParticleSet& p, WallContactList& list, const 
 struct InverseInertia {
   const double* mass;    // 1/m, 1/kg
   const double* moment;  // 1/I, 1/(kg m^2)
+  /// Every particle has the radius, mass and type of particle 0 (a monodisperse bed of one
+  /// material): the sweep then reads these per-particle values at index 0 (identicalIndexMask).
+  bool identical = false;
 };
+
+/// Index mask for the per-particle constants (radius, mass, type, 1/m, 1/I) of the contact sweep:
+/// all ones, or zero when every particle has particle 0's values. The loads x[i & mask] then stay
+/// on one cache line instead of a line per partner and per row (the values are the same, so are
+/// the results: bit-identical either way). The bubbling bed (24,750 identical spheres): contacts
+/// -12 to -20 % on one thread.
+inline std::uint32_t identicalIndexMask(bool identical) { return identical ? 0u : ~0u; }
 
 /// One thread's pass over its block of rows [begin, end) of the half neighbour list (see
 /// contactForcesAndKick). Rows are processed in runs: the touching pairs of a run are gathered
@@ -311,6 +321,7 @@ struct BlockSweep {
   Vec3 gravity;
   double dt, halfKick;
   bool external, withWalls, kickHere;  // kickHere: kick the rows whose forces are final in the pass
+  std::uint32_t attribute = ~0u;  // index mask of radius, mass, type, 1/m, 1/I (identicalIndexMask)
   const std::uint8_t* deferKick = nullptr;  // rows kicked after the barrier instead (PartnerBuffers::receives)
   // This thread's block.
   std::size_t begin, end;
@@ -328,17 +339,18 @@ struct BlockSweep {
     Vec3* __restrict const f = force;
     Vec3* __restrict const tq = torque;
     const double* __restrict const m = mass;
+    const std::size_t at = attribute;  // (zero-extended: 0 or 2^32 - 1, above any particle index)
     const Vec3 g = gravity;
     if (external) {
       const Vec3* __restrict const fe = externalForce;
       const Vec3* __restrict const te = externalTorque;
       for (; k < stop; ++k) {
-        f[k] = m[k] * g + fe[k];
+        f[k] = m[k & at] * g + fe[k];
         tq[k] = te[k];
       }
     } else {
       for (; k < stop; ++k) {
-        f[k] = m[k] * g;
+        f[k] = m[k & at] * g;
         tq[k] = Vec3{};
       }
     }
@@ -359,11 +371,13 @@ struct BlockSweep {
       const std::uint32_t j = partner[--k];
       if (j < a + kNearPartners) break;
       __builtin_prefetch(position + j);
-      __builtin_prefetch(radius + j);
       __builtin_prefetch(velocity + j);
       __builtin_prefetch(angularVelocity + j);
-      __builtin_prefetch(mass + j);
-      __builtin_prefetch(type + j);
+      if (attribute != 0) {
+        __builtin_prefetch(radius + j);
+        __builtin_prefetch(mass + j);
+        __builtin_prefetch(type + j);
+      }
       // force and torque: written by the scatter (initialised long before for a far partner,
       // when the initialisation front passed it). Partners of other blocks go to the buffers.
       const std::size_t own = std::min<std::size_t>(j, end - 1);
@@ -384,31 +398,32 @@ struct BlockSweep {
     const Vec3* const v = velocity + rb;
     const Vec3* const w = angularVelocity + rb;
     const double* const r = radius;
-    const double* const ri = radius + rb;
-    const double* const mi = mass + rb;
+    const double* const m = mass;
+    const std::uint32_t at = attribute;
+    const auto rowIndex = static_cast<std::uint32_t>(rb);
     const std::uint32_t* const partnerOf = partner + base;
     Vec3* const h = history + base;
     const PeriodicBox localBox = box;  // a local copy: the batch stores cannot change it (no reloads)
-    std::uint32_t m = start;
+    std::uint32_t kept = start;
     for (std::uint32_t c = 0; c < count; ++c) {
       const std::uint32_t row = b.owner[c];
       const std::uint32_t j = partnerOf[c];
       const Vec3 d = localBox.minimumImage(x[row] - position[j]);
-      const double rj = r[j];
+      const double rj = r[j & at];
       const double dist2 = normSquared(d);
-      const double rsum = ri[row] + rj;
-      b.entry[m] = base + c;
-      b.row[m] = row;
-      b.partner[m] = j;
-      b.dx[m] = d.x;
-      b.dy[m] = d.y;
-      b.dz[m] = d.z;
-      b.rj[m] = rj;
-      m += !(dist2 >= rsum * rsum) ? 1u : 0u;  // touching: keep the entry
+      const double rsum = r[(rowIndex + row) & at] + rj;
+      b.entry[kept] = base + c;
+      b.row[kept] = row;
+      b.partner[kept] = j;
+      b.dx[kept] = d.x;
+      b.dy[kept] = d.y;
+      b.dz[kept] = d.z;
+      b.rj[kept] = rj;
+      kept += !(dist2 >= rsum * rsum) ? 1u : 0u;  // touching: keep the entry
     }
     bool uniform = b.uniform;
     std::uint32_t firstPair = start > 0 ? b.pairIndex[0] : 0;
-    for (std::uint32_t e = start; e < m; ++e) {
+    for (std::uint32_t e = start; e < kept; ++e) {
       const std::uint32_t j = b.partner[e], row = b.row[e];
       // History travels with the touching entry (read here, for the touching pairs only).
       storeLane(b.hx, b.hy, b.hz, e, history[b.entry[e]]);
@@ -416,7 +431,8 @@ struct BlockSweep {
         const Vec3 rh = rollingHistory[b.entry[e]];
         storeLane(b.rhx, b.rhy, b.rhz, e, rh);
       }
-      const double rj = b.rj[e], rowRadius = ri[row];
+      const std::uint32_t i = (rowIndex + row) & at;  // (the row's particle for its constants)
+      const double rj = b.rj[e], rowRadius = r[i];
       const Vec3 wi = w[row], wj = angularVelocity[j];
       const Vec3 dv = v[row] - velocity[j];
       const Vec3 s = rowRadius * wi + rj * wj;
@@ -427,15 +443,15 @@ struct BlockSweep {
         storeLane(b.dwx, b.dwy, b.dwz, e, dw);
       }
       b.ri[e] = rowRadius;
-      b.mi[e] = mi[row];
-      b.mj[e] = mass[j];
-      const std::uint32_t pair = static_cast<std::uint32_t>(type[rb + row]) * types + static_cast<std::uint32_t>(type[j]);
+      b.mi[e] = m[i];
+      b.mj[e] = m[j & at];
+      const std::uint32_t pair = static_cast<std::uint32_t>(type[i]) * types + static_cast<std::uint32_t>(type[j & at]);
       b.pairIndex[e] = pair;
       if (e == 0) firstPair = pair;
       uniform = uniform && pair == firstPair;
     }
     b.uniform = uniform;
-    b.size = m;
+    b.size = kept;
     // The list keeps zero history (pairs not in contact lose theirs; the touching ones get theirs
     // back in scatterRun): one block clear of the run's entries instead of a store per candidate.
     std::memset(static_cast<void*>(h), 0, sizeof(Vec3) * count);
@@ -496,18 +512,19 @@ struct BlockSweep {
     const double* __restrict const im = inverseMass;
     const double* __restrict const ii = inverseMoment;
     const double h = halfKick;
+    const std::size_t at = attribute;
     const std::uint8_t* const defer = deferKick;
     if (defer) {
       for (std::size_t q = from; q < to; ++q)
         if (!defer[q]) {
-          v[q] += (h * im[q]) * f[q];
-          w[q] += (h * ii[q]) * tq[q];
+          v[q] += (h * im[q & at]) * f[q];
+          w[q] += (h * ii[q & at]) * tq[q];
         }
       return;
     }
     for (std::size_t q = from; q < to; ++q) {
-      v[q] += (h * im[q]) * f[q];
-      w[q] += (h * ii[q]) * tq[q];
+      v[q] += (h * im[q & at]) * f[q];
+      w[q] += (h * ii[q & at]) * tq[q];
     }
   }
 
@@ -541,7 +558,7 @@ struct BlockSweep {
       const WallDistance wd = !prim.active ? WallDistance{1e300, {}}
                               : AllPlanes  ? WallDistance{dot(xi - prim.a, prim.b), prim.b}
                                            : distanceToPrimitive(prim, xi);
-      const double ri = radius[i];
+      const double ri = radius[i & attribute];
       const Vec3 contactPoint = xi - wd.distance * wd.normal;
       b.entry[m] = base + c;
       b.row[m] = row;
@@ -582,7 +599,8 @@ struct BlockSweep {
       const Vec3 ww = wallAngularVelocity[w];
       const Vec3 wallPointVelocity = wallVelocity[w] + cross(ww, contactPoint - wallCentre[w]);
       const Vec3 vi = velocity[i], wi = angularVelocity[i];
-      const double ri = radius[i], mi = mass[i];
+      const std::size_t ia = i & attribute;
+      const double ri = radius[ia], mi = mass[ia];
       const Vec3 relativeVelocity = vi - ri * cross(wi, n) - wallPointVelocity;
       storeLane(b.vx, b.vy, b.vz, e, relativeVelocity);
       if constexpr (R != RollingLaw::None) {
@@ -592,7 +610,7 @@ struct BlockSweep {
       b.ri[e] = ri;
       b.mi[e] = mi;
       if constexpr (R == RollingLaw::Epsd) b.inertia[e] = 1.4 * mi * ri * ri;
-      const std::uint32_t pair = static_cast<std::uint32_t>(type[i]) * types + static_cast<std::uint32_t>(wallMaterial[w]);
+      const std::uint32_t pair = static_cast<std::uint32_t>(type[ia]) * types + static_cast<std::uint32_t>(wallMaterial[w]);
       b.pairIndex[e] = pair;
       if (e == 0) firstPair = pair;
       uniform = uniform && pair == firstPair;
@@ -782,6 +800,7 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
   common.dt = dt;
   common.halfKick = halfKick;
   common.external = p.hasExternalForces;
+  common.attribute = identicalIndexMask(inverse.identical);
   common.withWalls = !walls.primitives->empty();
   common.batchWalls = common.withWalls && !walls.hasTriangles;
   Vec3* force = p.force.data();

@@ -214,6 +214,11 @@ void System::updateInverseInertia() {
     inverseMass_[i] = 1.0 / p.mass[i];
     inverseMoment_[i] = 1.0 / p.inertia(i);  // solid sphere, 2/5 m r^2
   });
+  // Radius, mass and type change only with the particle set (insertion, removal, refresh()), as do
+  // 1/m and 1/I: checked here, with them.
+  identicalSpheres_ = !p.radius.empty();
+  for (std::size_t i = 1; identicalSpheres_ && i < p.size(); ++i)
+    identicalSpheres_ = p.radius[i] == p.radius[0] && p.mass[i] == p.mass[0] && p.type[i] == p.type[0];
 }
 
 void System::computeForces(double dt, double halfKick) {
@@ -228,7 +233,7 @@ void System::computeForces(double dt, double halfKick) {
   dispatchLaws(table_.normalLaw(), table_.rollingLaw(), table_.cohesionLaw(),
                [&]<NormalLaw N, RollingLaw R, CohesionLaw C>() {
                  contactForcesAndKick<N, R, C>(particles_, list_, wallList_, walls, table_, box_, gravity_, dt,
-                                               halfKick, {inverseMass_.data(), inverseMoment_.data()}, buffers_);
+                                               halfKick, {inverseMass_.data(), inverseMoment_.data(), identicalSpheres()}, buffers_);
                });
 }
 
@@ -261,6 +266,7 @@ struct DriftArrays {
   const Vec3* __restrict positionAtBuild;
   const double* __restrict inverseMass;
   const double* __restrict inverseMoment;
+  std::size_t attribute;  // index mask of 1/m and 1/I (identicalIndexMask, contact_kernel.hpp)
 };
 
 template <bool Periodic, bool Tracked>
@@ -276,11 +282,13 @@ void kickAndDrift(const DriftArrays& a, const PeriodicBox& box, double dt, std::
   const double* __restrict inverseMoment = a.inverseMoment;
   const double halfDt = 0.5 * dt;
   const PeriodicBox localBox = box;
+  const std::size_t at = a.attribute;
   LargestTwo local = largest;  // (in registers, not through the reference)
   for (std::int64_t i = begin; i < end; ++i) {
-    const Vec3 vi = v[i] + (halfDt * inverseMass[i]) * f[i];
+    const auto ia = static_cast<std::size_t>(i) & at;
+    const Vec3 vi = v[i] + (halfDt * inverseMass[ia]) * f[i];
     v[i] = vi;
-    w[i] += (halfDt * inverseMoment[i]) * tq[i];
+    w[i] += (halfDt * inverseMoment[ia]) * tq[i];
     const Vec3 xi = Periodic ? localBox.wrap(x[i] + dt * vi) : x[i] + dt * vi;
     x[i] = xi;
     if constexpr (Tracked) local.add(normSquared(Periodic ? localBox.minimumImage(xi - x0[i]) : xi - x0[i]));
@@ -311,7 +319,8 @@ void System::step(double dt) {
     const bool tracked = positionAtBuild_.size() == p.size();
     const DriftArrays arrays{p.position.data(),        p.velocity.data(),      p.angularVelocity.data(),
                              p.force.data(),           p.torque.data(),        positionAtBuild_.data(),
-                             inverseMass_.data(),      inverseMoment_.data()};
+                             inverseMass_.data(),      inverseMoment_.data(),
+                             identicalIndexMask(identicalSpheres())};
     // With a team, each thread takes the block of rows it swept in the last force evaluation (its
     // particles are in its cache); the reduction is order-independent, so any split gives the
     // same result.

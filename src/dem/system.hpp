@@ -69,6 +69,14 @@ class System {
 
   /// After editing particles() directly (tests, coupling): rebuilds lists and forces.
   void refresh();
+  /// All particles of one radius, mass and type (a monodisperse bed of one material): the contact
+  /// sweep and the integration then read these constants of particle 0 only (the same values, the
+  /// same results, less memory traffic). Set with the lists; radius, mass and type change only
+  /// through insertion, removal or refresh().
+  bool identicalSpheres() const { return identicalSpheres_ && identicalSpheresShortcut_; }
+  /// Off: the per-particle constants are read for every particle even when identical (tests that
+  /// the shortcut changes no bit; measurements).
+  void setIdenticalSpheresShortcut(bool enabled) { identicalSpheresShortcut_ = enabled; }
 
   double time() const { return time_; }
   long long steps() const { return steps_; }
@@ -113,6 +121,8 @@ class System {
   std::vector<std::size_t> threadBlocks_;  // threadBlocks()
   std::vector<Vec3> positionAtBuild_;
   std::vector<double> inverseMass_, inverseMoment_;  // 1/m, 1/I per particle (updated with the lists)
+  bool identicalSpheres_ = false;  // all particles of one radius, mass and type (set with 1/m, 1/I)
+  bool identicalSpheresShortcut_ = true;
   double timeAtBuild_ = 0.0;
   long long rebuilds_ = 0;
 

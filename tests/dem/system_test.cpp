@@ -192,6 +192,42 @@ TEST(DemSystem, SameInputSameThreadsGivesBitIdenticalState) {
   setThreadCount(1);
 }
 
+// A bed of identical spheres takes the sweep's shortcut (radius, mass, type, 1/m and 1/I read at
+// particle 0: System::identicalSpheres): bit-identical to reading every particle's values, with
+// walls, rolling history and cohesion, on one thread and on two (deferred kicks of the rows that
+// receive partner forces). A different sphere ends the shortcut.
+TEST(DemSystem, IdenticalSpheresShortcutChangesNoBit) {
+  std::string yaml = bedCase(1, "  rolling: epsd\n  rolling_friction: 0.1\n  cohesion: simplified_jkr\n"
+                                "  cohesion_energy_density: 1000");
+  const std::string logNormal = "{distribution: log_normal, median_diameter: 0.0015, sigma: 0.15}";
+  ASSERT_NE(yaml.find(logNormal), std::string::npos);
+  yaml.replace(yaml.find(logNormal), logNormal.size(), "{distribution: constant, diameter: 0.0015}");
+  {
+    DemCase polydisperse(bedCase(1), {0, 0, -9.81});
+    EXPECT_FALSE(polydisperse->identicalSpheres());
+  }
+  for (int threads : {1, 2}) {
+    setThreadCount(threads);
+    DemCase shortcut(yaml, {0, 0, -9.81}), everyParticle(yaml, {0, 0, -9.81});
+    everyParticle->setIdenticalSpheresShortcut(false);
+    EXPECT_TRUE(shortcut->identicalSpheres());
+    EXPECT_FALSE(everyParticle->identicalSpheres());
+    for (int s = 0; s < 3000; ++s) {
+      shortcut->step(2e-5);
+      everyParticle->step(2e-5);
+    }
+    EXPECT_GT(shortcut->rebuilds(), 3);
+    EXPECT_GT(shortcut->contactStatistics().particleContacts, 100);
+    EXPECT_GT(shortcut->contactStatistics().wallContacts, 10);
+    EXPECT_EQ(snapshot(*shortcut), snapshot(*everyParticle)) << threads << " threads";
+    // One sphere of another radius (same density: another mass too) ends the shortcut.
+    shortcut->particles().add(100000, 0, 0.0005, 2500, {0.006, 0.006, 0.028});
+    shortcut->refresh();
+    EXPECT_FALSE(shortcut->identicalSpheres());
+  }
+  setThreadCount(1);
+}
+
 // The per-thread partner buffers change only the summation order: two and three threads agree
 // with one thread to round-off over a short run (before chaotic divergence amplifies it). With
 // three, the last block receives partner forces from two earlier blocks, and every block kicks
