@@ -665,6 +665,13 @@ struct BlockSweep {
   void processRun(std::size_t rb, std::size_t re, std::uint32_t maxPartner) {
     ContactBatch& b = *batch;
     const std::uint32_t base = rowStart[rb], count = rowStart[re] - base;
+    // The run's tangential history (24 B per candidate, read for the touching pairs after the
+    // distance test): requested now, so that the lines arrive while the candidates are tested.
+    {
+      const char* first = reinterpret_cast<const char*>(history + base);
+      const char* last = reinterpret_cast<const char*>(history + base + count);
+      for (const char* line = first; line < last; line += 64) __builtin_prefetch(line, 1);
+    }
     // Owner of each candidate: kRowFill stores per row without a loop (the next row overwrites
     // the excess); longer rows finish in a loop.
     for (std::size_t i = rb; i < re; ++i) {
