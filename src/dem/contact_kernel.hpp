@@ -672,6 +672,16 @@ struct BlockSweep {
       const char* last = reinterpret_cast<const char*>(history + base + count);
       for (const char* line = first; line < last; line += 64) __builtin_prefetch(line, 1);
     }
+    // Likewise the run's wall entries (history read; force and contact point written).
+    if (batchWalls) {
+      const std::uint32_t wallBase = wallRowStart[rb], wallEnd = wallRowStart[re];
+      WallContactList& list = *wallList;
+      for (const Vec3* array : {list.tangentialHistory.data(), list.force.data(), list.point.data()}) {
+        const char* first = reinterpret_cast<const char*>(array + wallBase);
+        const char* last = reinterpret_cast<const char*>(array + wallEnd);
+        for (const char* line = first; line < last; line += 64) __builtin_prefetch(line, 1);
+      }
+    }
     // Owner of each candidate: kRowFill stores per row without a loop (the next row overwrites
     // the excess); longer rows finish in a loop.
     for (std::size_t i = rb; i < re; ++i) {
