@@ -386,6 +386,13 @@ struct BlockSweep {
     }
   }
 
+  /// Requests (for writing) every cache line of the entries [first, first + count) of an array.
+  [[gnu::always_inline]] static void prefetchEntries(const Vec3* array, std::uint32_t first, std::uint32_t count) {
+    const char* const end = reinterpret_cast<const char*>(array + first + count);
+    for (const char* line = reinterpret_cast<const char*>(array + first); line < end; line += 64)
+      __builtin_prefetch(line, 1);
+  }
+
   /// Gathers the touching pairs among the candidates [base, base + count) of the rows of a run
   /// (rows [rb, ...), `b.owner[c]`: the run's row of candidate c) into the batch, with their
   /// history, and clears the history of all candidates. One flat loop over the candidates of all
@@ -667,20 +674,13 @@ struct BlockSweep {
     const std::uint32_t base = rowStart[rb], count = rowStart[re] - base;
     // The run's tangential history (24 B per candidate, read for the touching pairs after the
     // distance test): requested now, so that the lines arrive while the candidates are tested.
-    {
-      const char* first = reinterpret_cast<const char*>(history + base);
-      const char* last = reinterpret_cast<const char*>(history + base + count);
-      for (const char* line = first; line < last; line += 64) __builtin_prefetch(line, 1);
-    }
+    prefetchEntries(history, base, count);
     // Likewise the run's wall entries (history read; force and contact point written).
     if (batchWalls) {
-      const std::uint32_t wallBase = wallRowStart[rb], wallEnd = wallRowStart[re];
+      const std::uint32_t wallBase = wallRowStart[rb], wallCount = wallRowStart[re] - wallBase;
       WallContactList& list = *wallList;
-      for (const Vec3* array : {list.tangentialHistory.data(), list.force.data(), list.point.data()}) {
-        const char* first = reinterpret_cast<const char*>(array + wallBase);
-        const char* last = reinterpret_cast<const char*>(array + wallEnd);
-        for (const char* line = first; line < last; line += 64) __builtin_prefetch(line, 1);
-      }
+      for (const Vec3* array : {list.tangentialHistory.data(), list.force.data(), list.point.data()})
+        prefetchEntries(array, wallBase, wallCount);
     }
     // Owner of each candidate: kRowFill stores per row without a loop (the next row overwrites
     // the excess); longer rows finish in a loop.
