@@ -371,6 +371,9 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   const int cP = StandardChannels ? 4 : gradPChannel_, cT = StandardChannels ? 7 : divTauChannel_,
             cW = StandardChannels ? -1 : vorticityChannel_;
   const bool planesPerThread = planesPerThread_;
+  // Fluid torque on the particles: written only when computed; otherwise the torques stay zero
+  // (cleared once, computeParticleForces) and the DEM force loop does not read them.
+  const bool torqueOut = cW >= 0 && w.fluidTorque;
   const Vec3 buoyancy = w.buoyancy ? force::buoyancy(rho, 1.0, gravity_) : Vec3{};  // per volume
   const TrilinearSampler sampler(topology_);
   constexpr int kBlock = 32;
@@ -447,7 +450,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       beta_[p] = beta;
       otherExchangedForce_[p] = exchangedOther;
       particles.externalForce[p] = fDrag + exchangedOther + particleOnly;
-      particles.externalTorque[p] = torque;
+      if (torqueOut) particles.externalTorque[p] = torque;
       const Vec3 exchanged = fDrag + exchangedOther;
       sum[0] += exchanged.x, sum[1] += exchanged.y, sum[2] += exchanged.z;
       exchangedSquared[q] = dot(exchanged, exchanged);
@@ -487,6 +490,8 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
   lastFluid_ = fluid;
   particles.enableExternalForces();
   const ForceSwitches& w = settings_.forces;
+  if (w.fluidTorque) particles.hasExternalTorques = true;  // (forcePass writes them)
+  else particles.clearExternalTorques();
   for (int a = 0; a < 3; ++a) {
     if (!fluid.velocity[a]) throw std::invalid_argument("coupling: FluidView::velocity is not set");
     if (w.pressureGradient && !fluid.pressureGradient[a])

@@ -320,7 +320,7 @@ struct BlockSweep {
   PeriodicBox box;
   Vec3 gravity;
   double dt, halfKick;
-  bool external, withWalls, kickHere;  // kickHere: kick the rows whose forces are final in the pass
+  bool external, externalTorques, withWalls, kickHere;  // kickHere: kick the rows whose forces are final in the pass
   std::uint32_t attribute = ~0u;  // index mask of radius, mass, type, 1/m, 1/I (identicalIndexMask)
   const std::uint8_t* deferKick = nullptr;  // rows kicked after the barrier instead (PartnerBuffers::receives)
   // This thread's block.
@@ -341,12 +341,18 @@ struct BlockSweep {
     const double* __restrict const m = mass;
     const std::size_t at = attribute;  // (zero-extended: 0 or 2^32 - 1, above any particle index)
     const Vec3 g = gravity;
-    if (external) {
+    if (external && externalTorques) {
       const Vec3* __restrict const fe = externalForce;
       const Vec3* __restrict const te = externalTorque;
       for (; k < stop; ++k) {
         f[k] = m[k & at] * g + fe[k];
         tq[k] = te[k];
+      }
+    } else if (external) {  // (external torques all zero: not read)
+      const Vec3* __restrict const fe = externalForce;
+      for (; k < stop; ++k) {
+        f[k] = m[k & at] * g + fe[k];
+        tq[k] = Vec3{};
       }
     } else {
       for (; k < stop; ++k) {
@@ -817,6 +823,7 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
   common.dt = dt;
   common.halfKick = halfKick;
   common.external = p.hasExternalForces;
+  common.externalTorques = p.hasExternalTorques;
   common.attribute = identicalIndexMask(inverse.identical);
   common.withWalls = !walls.primitives->empty();
   common.batchWalls = common.withWalls && !walls.hasTriangles;

@@ -1,5 +1,6 @@
 #include "dem/particles.hpp"
 
+#include <algorithm>
 #include <numbers>
 
 #include "core/parallel.hpp"
@@ -29,6 +30,12 @@ void ParticleSet::enableExternalForces() {
   externalForce.assign(size(), Vec3{});
   externalTorque.assign(size(), Vec3{});
   hasExternalForces = true;
+  hasExternalTorques = true;
+}
+
+void ParticleSet::clearExternalTorques() {
+  if (hasExternalTorques) std::fill(externalTorque.begin(), externalTorque.end(), Vec3{});
+  hasExternalTorques = false;
 }
 
 void ParticleSet::reserve(std::size_t n) {
@@ -105,10 +112,12 @@ void ParticleSet::load(BinaryReader& in) {
     throw CheckpointError("checkpoint is corrupt: particle arrays have different lengths");
   // External forces that are all zero (a DEM-only run, or a checkpoint written before they were
   // sized on demand) are dropped: the force loop gives the same result without them.
-  bool anyExternal = false;
-  for (std::size_t i = 0; i < externalForce.size() && !anyExternal; ++i)
-    anyExternal = normSquared(externalForce[i]) != 0.0 || normSquared(externalTorque[i]) != 0.0;
+  bool anyTorque = false;
+  for (std::size_t i = 0; i < externalTorque.size() && !anyTorque; ++i) anyTorque = normSquared(externalTorque[i]) != 0.0;
+  bool anyExternal = anyTorque;
+  for (std::size_t i = 0; i < externalForce.size() && !anyExternal; ++i) anyExternal = normSquared(externalForce[i]) != 0.0;
   hasExternalForces = anyExternal;
+  hasExternalTorques = anyTorque;
   if (!anyExternal) {
     externalForce = {};
     externalTorque = {};

@@ -88,6 +88,30 @@ TEST(Exchange, NewtonsThirdLawHoldsToRoundOffForEveryConfiguration) {
   EXPECT_EQ(checked, 48);
 }
 
+// Fluid torque on: the particles carry it (hasExternalTorques, non-zero torques in the swirl).
+// Off: no torque is written and the stale ones of an earlier pass are cleared, so the DEM force
+// loop may skip reading them.
+TEST(Exchange, ExternalTorquesAreWrittenOnlyWithFluidTorque) {
+  dem::ParticleSet particles = randomParticles(200, 0.001, 0.002, {0, 0, 0}, {0.08, 0.077, 0.081});
+  FluidFields fluid(kGrid);
+  fluid.setVelocity(kGrid, swirl);
+  auto withTorque = makeCoupler("  void_fraction: divided\n  forces:\n    fluid_torque: true\n", kGrid);
+  auto without = makeCoupler("  void_fraction: divided\n", kGrid);
+  CouplingFields fields(kGrid);
+  withTorque->computeVoidFraction(particles, fields);
+  withTorque->computeParticleForces(fluid.view(1.2, 1.8e-5), fields, particles);
+  EXPECT_TRUE(particles.hasExternalTorques);
+  double largest = 0.0;
+  for (const Vec3& t : particles.externalTorque) largest = std::max(largest, norm(t));
+  EXPECT_GT(largest, 0.0);
+  CouplingFields other(kGrid);
+  without->computeVoidFraction(particles, other);
+  without->computeParticleForces(fluid.view(1.2, 1.8e-5), other, particles);
+  EXPECT_FALSE(particles.hasExternalTorques);
+  for (const Vec3& t : particles.externalTorque) ASSERT_EQ(t, Vec3{});
+  EXPECT_GT(norm(particles.externalForce[0]), 0.0);
+}
+
 TEST(Exchange, SemiImplicitFieldsReproduceTheExplicitSourceAtTheCouplingInstant) {
   // u_p per cell is the K-weighted particle velocity corrected by the interpolation defect
   // (u_c - u_f@p), so K (u_c - u_p) equals the explicit drag source in every cell at the coupling

@@ -305,6 +305,37 @@ TEST(DemSystem, ExternalForcesAreSizedOnDemandAndChangeNothingWhenZero) {
   EXPECT_EQ(plain->particles().position, zeroed->particles().position);
   EXPECT_EQ(plain->particles().velocity, zeroed->particles().velocity);
 
+  // an external torque turns the particles it acts on only while hasExternalTorques says it is
+  // there (false: the force loop does not read the torques, which are all zero then)
+  {
+    DemCase turned(yaml, {0, 0, -9.81});
+    ParticleSet& q = turned->particles();
+    q.enableExternalForces();
+    EXPECT_TRUE(q.hasExternalTorques);
+    for (Vec3& t : q.externalTorque) t = Vec3{0.0, 0.0, 1e-9};
+    DemCase reference(yaml, {0, 0, -9.81});
+    reference->particles().enableExternalForces();
+    reference->particles().clearExternalTorques();
+    turned->step(2e-5);
+    reference->step(2e-5);
+    double spin = 0.0;
+    for (std::size_t i = 0; i < q.size(); ++i)
+      spin += q.angularVelocity[i].z - reference->particles().angularVelocity[i].z;
+    EXPECT_GT(spin, 0.0);
+    EXPECT_EQ(q.position, reference->particles().position);  // (a torque moves nothing in one step)
+    q.clearExternalTorques();
+    EXPECT_FALSE(q.hasExternalTorques);
+    for (const Vec3& t : q.externalTorque) ASSERT_EQ(t, Vec3{});
+    // a checkpoint with zero torques but non-zero forces: forces kept, torques flagged absent
+    q.externalForce[0] = Vec3{1e-4, 0, 0};
+    const std::vector<char> saved = snapshot(*turned);
+    DemCase restarted(yaml, {0, 0, -9.81});
+    BinaryReader reader(saved.data(), saved.size());
+    restarted->load(reader);
+    EXPECT_TRUE(restarted->particles().hasExternalForces);
+    EXPECT_FALSE(restarted->particles().hasExternalTorques);
+  }
+
   // a standalone set: the arrays stay one per particle through add and gather (reordering)
   ParticleSet loose = randomParticles(50, {0.01, 0.01, 0.01}, 3);
   loose.enableExternalForces();
