@@ -371,9 +371,9 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   const int cP = StandardChannels ? 4 : gradPChannel_, cT = StandardChannels ? 7 : divTauChannel_,
             cW = StandardChannels ? -1 : vorticityChannel_;
   const bool planesPerThread = planesPerThread_;
-  // Fluid torque on the particles: written only when computed; otherwise the torques stay zero
-  // (cleared once, computeParticleForces) and the DEM force loop does not read them.
-  const bool torqueOut = cW >= 0 && w.fluidTorque;
+  // Fluid torque on the particles: written only when switched on; otherwise the torques stay zero
+  // (cleared once, computeParticleForces, on the same switch) and the DEM force loop does not read them.
+  const bool torqueOut = w.fluidTorque;
   const Vec3 buoyancy = w.buoyancy ? force::buoyancy(rho, 1.0, gravity_) : Vec3{};  // per volume
   const TrilinearSampler sampler(topology_);
   constexpr int kBlock = 32;
