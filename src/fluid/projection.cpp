@@ -42,10 +42,12 @@ double Solver::divergenceAt(int i, int j, int k, double dt) const {
 
 double Solver::maxDivergence() const {
   // divergenceAt() line by line (same arithmetic); a maximum does not depend on the order.
+  // The eps pair of the last step (epsStep_, epsOlder_): in a coupled run the coupler has
+  // already replaced the coupling fields by those of the next step (eps^{n+2}, eps^{n+1}).
   const int nx = grid_.cells[0], ny = grid_.cells[1], nz = grid_.cells[2];
   const int dims = twoD_ ? 2 : 3;
-  const double* E = coupling_.voidFraction.data().data();
-  const double* Eo = coupling_.voidFractionOld.data().data();
+  const double* E = (epsStepKept_ ? epsStep_ : coupling_.voidFraction).data().data();
+  const double* Eo = (epsStepKept_ ? epsOlder_ : coupling_.voidFractionOld).data().data();
   const double dt = lastDt_;
   std::vector<double> lineMax(static_cast<std::size_t>(ny) * nz, 0.0);
   parallelFor(static_cast<std::int64_t>(ny) * nz, [&](std::int64_t line) {

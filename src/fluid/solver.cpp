@@ -41,6 +41,7 @@ Solver::Solver(Params& root, const Domain& domain, const Vec3& gravity) : domain
   p_ = Field(grid_);
   phi_ = Field(grid_);
   epsOlder_ = Field(grid_, Staggering::Cell, 1.0);
+  epsStep_ = Field(grid_, Staggering::Cell, 1.0);
   scalar_ = Field(grid_);
   blocked_.assign(p_.data().size(), 0);
   markBlocked(fluid);
@@ -347,6 +348,12 @@ void Solver::step(double dt) {
     epsOlder_ = coupling_.voidFractionOld;
     epsOlderOnes_ = uniform;
   }
+  // eps_step <- eps (the pair eps_step, eps_older is the one this step's continuity equation used)
+  if (!(uniform && epsStepOnes_)) {
+    epsStep_ = coupling_.voidFraction;
+    epsStepOnes_ = uniform;
+  }
+  epsStepKept_ = true;
   dtPrev_ = dt;
   lastDt_ = dt;
   time_ += dt;
@@ -562,6 +569,7 @@ void Solver::load(BinaryReader& in) {
   ghostsFresh_ = false;
   readInto(epsOlder_);
   epsOlderOnes_ = false;
+  epsStepKept_ = false;
   readInto(scalar_);
   readInto(coupling_.voidFraction);
   readInto(coupling_.voidFractionOld);

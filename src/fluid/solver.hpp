@@ -93,7 +93,8 @@ class Solver {
   const Boundaries& boundaries() const { return bc_; }
   double time() const { return time_; }
   long long stepsDone() const { return steps_; }
-  /// max over cells of |div(eps u) + (eps - eps_old)/dt| for the current velocity and last dt.
+  /// max over cells of |div(eps u) + (eps - eps_old)/dt| for the current velocity, the last dt and
+  /// the eps pair that step used (a coupler may have moved the coupling fields on since).
   double maxDivergence() const;
 
   // Initial conditions (also used by tests): set u^n (= u^{n-1}), p, scalar from functions of position.
@@ -180,6 +181,11 @@ class Solver {
   Field conv_[3], convOld_[3];  // convective term N^n, N^{n-1}
   Field rhs_[3];
   Field p_, phi_, epsOlder_, scalar_;
+  /// eps of the last step (the eps^{n+1} its continuity equation used; with epsOlder_, its eps^n):
+  /// maxDivergence() after the step, when a coupler has already moved the coupling fields on.
+  Field epsStep_;
+  bool epsStepOnes_ = true;   // epsStep_ is 1 everywhere (ghosts included)
+  bool epsStepKept_ = false;  // a step has run since construction or restart (else: coupling fields)
   Field cellDivergence_;  // div u per cell for the eps-varying viscous stress (momentum.cpp)
   std::vector<std::uint8_t> blocked_;     // per cell-field point
   std::vector<std::uint8_t> unknown_[3];  // per face point: solved by the momentum equation
