@@ -23,25 +23,8 @@ int Solver::teamSize() const {
       1, std::min<std::int64_t>({gf::threadCount(), grid_.cells[2], cells / 1500})));
 }
 
-double Solver::divergenceAt(int i, int j, int k, double dt) const {
-  const Field& eps = coupling_.voidFraction;
-  const double* E = eps.data().data();
-  const std::size_t cc = eps.index(i, j, k);
-  double div = 0.0;
-  for (int a = 0; a < (twoD_ ? 2 : 3); ++a) {
-    const Field& u = u_[a];
-    const std::size_t f = u.index(i, j, k);
-    const std::ptrdiff_t su = u.stride(a), se = eps.stride(a);
-    const double flux_hi = 0.5 * (E[cc] + E[cc + se]) * u.data()[f + su];
-    const double flux_lo = 0.5 * (E[cc] + E[cc - se]) * u.data()[f];
-    div += (flux_hi - flux_lo) / grid_.spacing[a];
-  }
-  if (dt > 0.0) div += (E[cc] - coupling_.voidFractionOld.data()[cc]) / dt;
-  return div;
-}
-
 double Solver::maxDivergence() const {
-  // divergenceAt() line by line (same arithmetic); a maximum does not depend on the order.
+  // Line by line; a maximum does not depend on the order.
   // The eps pair of the last step (epsStep_, epsOlder_): in a coupled run the coupler has
   // already replaced the coupling fields by those of the next step (eps^{n+2}, eps^{n+1}).
   const int nx = grid_.cells[0], ny = grid_.cells[1], nz = grid_.cells[2];

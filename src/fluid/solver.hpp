@@ -150,7 +150,6 @@ class Solver {
   void project(double dt, double gamma0);
   void controlFlowRate(double dt, double gamma0);
   double correctMomentum(double dt, double gamma0);
-  double divergenceAt(int i, int j, int k, double dt) const;
   // scalar.cpp
   void advanceScalar(double dt);
 
