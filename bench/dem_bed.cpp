@@ -7,9 +7,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "core/domain.hpp"
@@ -130,6 +133,16 @@ SettledTile settleBed(double lx, double ly, int count, bool periodic) {
   return tile;
 }
 
+void writeTileCsv(const SettledTile& tile, const std::string& path) {
+  const std::string partial = path + ".partial";
+  {
+    std::ofstream out(partial);
+    for (const gf::Vec3& x : tile.position) out << fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", x.x, x.y, x.z, tile.radius);
+    if (!out) throw std::runtime_error("cannot write " + partial);
+  }
+  std::filesystem::rename(partial, path);
+}
+
 /// The spec system filled with the tile repeated tx x ty times (periodic tiles only).
 std::unique_ptr<Bed> bedFromTile(const SettledTile& tile, int tx, int ty, bool periodic) {
   const double lx = tile.lx * tx, ly = tile.ly * ty;
@@ -152,6 +165,9 @@ void BM_DemSettledBed(benchmark::State& state) {
   const auto start = std::chrono::steady_clock::now();
   static const SettledTile tile = settleBed(0.06, 0.06, 15000, false);
   state.counters["setup_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // The settled positions for the same bed in another code (bench/liggghts_settled_bed.sh):
+  // x, y, z, r in m, one sphere per line, written to a temporary file and renamed.
+  if (const char* path = std::getenv("GRAINFLOW_SETTLED_BED_CSV")) writeTileCsv(tile, path);
   auto bed = bedFromTile(tile, 1, 1, false);
   runSteps(state, *bed, 500);
 }
