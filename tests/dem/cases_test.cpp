@@ -42,7 +42,7 @@ TEST_P(DemCaseFiles, RunsShortenedWithValidTimeStepAndMonitors) {
   for (int k = 0; k < 300; ++k) s.step(c.dt);
   EXPECT_NO_THROW(s.checkHealth(300, s.time()));
   EXPECT_LE(s.energy().total(), e0 * (1.0 + 1e-9));  // dissipative contacts: never gains energy
-  const RunState state{s.time(), s.steps(), &s, nullptr, nullptr};
+  const RunState state{s.time(), s.steps(), &s, nullptr, nullptr, {}};
   for (auto& m : c.monitors) {
     const std::vector<double> values = m->sample(state);
     EXPECT_EQ(values.size(), m->columns().size());

@@ -24,7 +24,7 @@ TEST(HeapAngleMonitor, ConeFromARadialQuantile) {
   gf::Params root = gf::Params::loadString(kCase, "test");
   const gf::Domain domain = gf::Domain::read(root);
   gf::dem::System dem{root, domain, {0.0, 0.0, 0.0}};
-  const gf::RunState state{0.0, 0, &dem, nullptr, nullptr};
+  const gf::RunState state{0.0, 0, &dem, nullptr, nullptr, {}};
   gf::Params p = root.section({"heap"});
   auto heap = gf::Registry<gf::Monitor>::instance().create(p, {"type"});
   ASSERT_EQ(heap->columns().size(), 3u);

@@ -151,9 +151,15 @@ insertion:
   ASSERT_EQ(s.particles().size(), 8u);
   // Morton reordering may change the order: find by id.
   for (std::size_t i = 0; i < s.particles().size(); ++i) {
-    if (s.particles().id[i] == 0) EXPECT_EQ(s.particles().velocity[i], (Vec3{0, 0, -1}));
-    if (s.particles().id[i] == 1) EXPECT_DOUBLE_EQ(s.particles().radius[i], 0.0015);
-    if (s.particles().id[i] >= 2) EXPECT_DOUBLE_EQ(s.particles().radius[i], 0.001);
+    if (s.particles().id[i] == 0) {
+      EXPECT_EQ(s.particles().velocity[i], (Vec3{0, 0, -1}));
+    }
+    if (s.particles().id[i] == 1) {
+      EXPECT_DOUBLE_EQ(s.particles().radius[i], 0.0015);
+    }
+    if (s.particles().id[i] >= 2) {
+      EXPECT_DOUBLE_EQ(s.particles().radius[i], 0.001);
+    }
   }
 }
 

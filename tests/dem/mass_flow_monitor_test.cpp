@@ -23,7 +23,7 @@ std::unique_ptr<Monitor> massFlowMonitor(Params&) {
   return Registry<Monitor>::instance().create(p, {"type"});
 }
 
-std::vector<double> sampleAt(Monitor& m, const System& s) { return m.sample(RunState{s.time(), s.steps(), &s}); }
+std::vector<double> sampleAt(Monitor& m, const System& s) { return m.sample(RunState{s.time(), s.steps(), &s, nullptr, nullptr, {}}); }
 
 constexpr double kDt = 1e-5;
 constexpr int kStepsPerSample = 200;

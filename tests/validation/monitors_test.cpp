@@ -25,7 +25,7 @@ struct TwoParticles {
   gf::Params root = gf::Params::loadString(kCase, "test");
   gf::Domain domain = gf::Domain::read(root);
   gf::dem::System dem{root, domain, {0.0, 0.0, 0.0}};
-  gf::RunState state() const { return gf::RunState{0.0, 0, &dem, nullptr, nullptr}; }
+  gf::RunState state() const { return gf::RunState{0.0, 0, &dem, nullptr, nullptr, {}}; }
   std::unique_ptr<gf::Monitor> monitor(const char* section) {
     gf::Params p = root.section({section});
     return gf::Registry<gf::Monitor>::instance().create(p, {"type"});
