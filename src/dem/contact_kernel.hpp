@@ -396,7 +396,7 @@ struct BlockSweep {
   /// gather needs them, and their entries of this thread's partner buffer. Those partners are the
   /// next thread's particles: their positions and velocities were last written by that thread
   /// (drift, kicks) and the buffer lines by the merge after the barrier, so each is a transfer
-  /// from the other core's cache. Without the request the first block's sweep took 15-20 % longer
+  /// from the other core's cache. Without the request the first block's sweep took 17-23 % longer
   /// than the second's for the same work (settled bed, 2 threads, session 19: 1,750 such pairs
   /// per step). Rows hold ascending partners: the later-block ones are last.
   [[gnu::always_inline]] void prefetchLaterBlockPartners(std::size_t a) const {
