@@ -302,7 +302,7 @@ void Simulation::advance() {
 
 void Simulation::forcesOnParticles(const coupling::FluidView& fluid) {
   ScopedPhase timer(appTimers_, Phase::Coupling);
-  coupler_->setParticleBlocks(dem_->threadBlocks());  // each thread on the particles it moves
+  coupler_->setParticleBlocks(dem_->threadBlocks());  // the DEM's split where it is nearly even
   coupler_->computeParticleForces(fluid, fluid_->couplingFields(), dem_->particles());
 }
 

@@ -304,6 +304,40 @@ TEST(Exchange, ParticleForcesAreTheSameOnOneTwoAndThreeThreads) {
   omp_set_num_threads(saved);
 }
 
+TEST(Exchange, AnUnevenParticleSplitIsReplacedByEqualBlocks) {
+  // Coupler::setParticleBlocks keeps the DEM's split only while no block holds more than 5 %
+  // above an equal share (the coupling's passes cost the same per particle). The deposits add
+  // the threads' sums in thread order, so the split shows in the last bits of the void fraction:
+  // an uneven split must give the bits of equal blocks, a nearly equal one its own.
+  EXPECT_TRUE(Coupler::nearlyEqual({0, 3000, 6000}));
+  EXPECT_TRUE(Coupler::nearlyEqual({0, 3150, 6000}));
+  EXPECT_FALSE(Coupler::nearlyEqual({0, 3151, 6000}));
+  EXPECT_FALSE(Coupler::nearlyEqual({0, 2000, 6000}));  // (the other block is the large one)
+  EXPECT_FALSE(Coupler::nearlyEqual({}));
+  const CartesianGrid g = makeGrid({6, 8, 20}, {0.01, 0.01, 0.01});
+  // (solid fraction ~0.4: the regrouped sums' last bits survive eps = 1 - solid fraction)
+  const dem::ParticleSet base = randomParticles(6000, 0.0018, 0.0026, {0, 0, 0}, {0.06, 0.08, 0.2}, 11);
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(2);
+  auto voidFraction = [&](const std::vector<std::size_t>& blocks) {
+    dem::ParticleSet p = base;
+    CouplingFields f(g);
+    auto c = makeCoupler("  void_fraction: divided\n", g);
+    c->setParticleBlocks(blocks);
+    c->computeVoidFraction(p, f);
+    return f.voidFraction.data();
+  };
+  const std::vector<double> equal = voidFraction({});
+  EXPECT_EQ(voidFraction({0, 4200, 6000}), equal);  // 70 % in one block: replaced
+  EXPECT_EQ(voidFraction({0, 3000, 6000}), equal);  // the equal split itself
+  // kept: 3100 / 2900 moves 100 particles' sums into the other buffer (a change in the last bits
+  // somewhere; the same volume to round-off)
+  const std::vector<double> kept = voidFraction({0, 3100, 6000});
+  EXPECT_NE(kept, equal);
+  for (std::size_t q = 0; q < kept.size(); ++q) EXPECT_NEAR(kept[q], equal[q], 1e-13);
+  omp_set_num_threads(saved);
+}
+
 TEST(Exchange, SubstepAverageGivesTheFluidTheMeanExchangeOfTheSubstepsMatchedById) {
   // substep_fluid_fields: interpolated. Forces before each of two substeps (different fluid
   // states; the "DEM" reverses the particle order in between): the fluid receives, cell by cell,
