@@ -11,7 +11,6 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
-#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -20,6 +19,7 @@
 #include "dem/neighbour_list.hpp"
 #include "dem/system.hpp"
 #include "dem/wall_contact_list.hpp"
+#include "io/atomic_file.hpp"
 
 namespace {
 
@@ -134,13 +134,9 @@ SettledTile settleBed(double lx, double ly, int count, bool periodic) {
 }
 
 void writeTileCsv(const SettledTile& tile, const std::string& path) {
-  const std::string partial = path + ".partial";
-  {
-    std::ofstream out(partial);
-    for (const gf::Vec3& x : tile.position) out << fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", x.x, x.y, x.z, tile.radius);
-    if (!out) throw std::runtime_error("cannot write " + partial);
-  }
-  std::filesystem::rename(partial, path);
+  std::string csv;
+  for (const gf::Vec3& x : tile.position) csv += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", x.x, x.y, x.z, tile.radius);
+  gf::io::writeFileAtomically(path, csv);
 }
 
 /// The spec system filled with the tile repeated tx x ty times (periodic tiles only).
