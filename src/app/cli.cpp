@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -32,7 +33,7 @@ int commandCheck(const std::string& caseFile, int threads) {
   std::fputs(simulation->resolvedCase().c_str(), stdout);
   const auto& particles = simulation->dem().particles();
   std::fputs(fmt::format("# particles: {}\n", particles.size()).c_str(), stdout);
-  if (particles.size() > 0)
+  if (std::isfinite(simulation->dem().rayleighTime()))  // (particles present or insertable)
     std::fputs(fmt::format("# DEM step {:g} s = {:.1f} % of the Rayleigh time {:.4g} s\n", simulation->settings().demStep,
                            100.0 * simulation->settings().demStep / simulation->dem().rayleighTime(),
                            simulation->dem().rayleighTime())

@@ -104,7 +104,10 @@ Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptio
   if (options.endTime) settings_.endTime = *options.endTime;
   if (options.outputDirectory) settings_.outputDirectory = *options.outputDirectory;
   domain_ = Domain::read(root);
-  dem_ = std::make_unique<dem::System>(root, domain_, settings_.gravity);
+  // A restart brings its particles from the checkpoint (prepare()): no initial insertion; the
+  // coupling-interval check, which needs the particles, runs after the restore.
+  const auto initial = options.restartFile ? dem::InitialParticles::FromCheckpoint : dem::InitialParticles::Insert;
+  dem_ = std::make_unique<dem::System>(root, domain_, settings_.gravity, initial);
   checkTimeStep(root);
   if (root.documenting() || root.has("fluid")) fluid_ = std::make_unique<fluid::Solver>(root, domain_, settings_.gravity);
   if (root.documenting() || root.has("coupling")) {
@@ -140,6 +143,10 @@ void Simulation::initialiseCoupling() {
   CouplingFields& fields = fluid_->couplingFields();
   coupler_->computeVoidFraction(dem_->particles(), fields);
   fields.voidFractionOld = fields.voidFraction;
+  checkCouplingInterval();
+}
+
+void Simulation::checkCouplingInterval() {
   if (dem_->particles().size() == 0) return;
   // Coupling-interval criterion (seed 000 eq. 5.30, tables 5.4/5.5), in the Stokes limit (slip 0).
   const coupling::CouplingIntervalCheck check = coupler_->checkCouplingInterval(
@@ -171,10 +178,12 @@ std::unique_ptr<Simulation> Simulation::fromFile(const std::string& caseFile, co
 }
 
 void Simulation::checkTimeStep(Params& root) {
-  if (root.documenting() || dem_->particles().size() == 0) return;
+  if (root.documenting()) return;
   // Rayleigh criterion (e.g. seed 000 lines 957-1000): dt above 20 % of the Rayleigh time is
-  // risky, above 50 % the contacts are not resolved.
+  // risky, above 50 % the contacts are not resolved. Of the particles present and of the smallest
+  // each insertion can make (rate-based ones too; a restart has none before the restore).
   const double rayleigh = dem_->rayleighTime();
+  if (!std::isfinite(rayleigh)) return;
   const double ratio = settings_.demStep / rayleigh;
   Params time = root.section({"time"});
   if (ratio > 0.5)
@@ -251,6 +260,7 @@ void Simulation::restoreCheckpoint(const std::string& path) {
     coupler_->computeVoidFraction(dem_->particles(), fields);
     fields.voidFraction = eps;
     fields.voidFractionOld = epsOld;
+    checkCouplingInterval();
   }
   for (MonitorSlot& m : monitors_) m.monitor->load(in);
   if (!in.atEnd()) throw CheckpointError(fmt::format("checkpoint '{}' has trailing data (written by another case?)", path));

@@ -102,6 +102,8 @@ class Simulation {
   void saveGoodState();
   void checkHealth() const;
   void checkTimeStep(Params& root);
+  /// Coupling-interval criterion for the particles present (a warning).
+  void checkCouplingInterval();
   coupling::FluidView fluidView();
   void forcesOnParticles(const coupling::FluidView& fluid);  // coupler: fluid forces on the particles
   void initialiseCoupling();

@@ -12,7 +12,7 @@
 
 namespace gf::dem {
 
-System::System(Params& root, const Domain& domain, const Vec3& gravity)
+System::System(Params& root, const Domain& domain, const Vec3& gravity, InitialParticles initial)
     : domain_(domain), box_(domain), gravity_(gravity), table_(root) {
   readWalls(root);
   InsertionCommon::table() = &table_;
@@ -28,6 +28,9 @@ System::System(Params& root, const Domain& domain, const Vec3& gravity)
       20));
   if (root.documenting()) return;
   updateWalls();
+  // A restart skips the initial insertion: load() would discard its particles, and a random packing
+  // of 1e6 spheres takes seconds.
+  if (initial == InitialParticles::FromCheckpoint) return;
   insertAndRemove(0.0);
   refresh();
 }
@@ -364,6 +367,14 @@ double System::rayleighTime() const {
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     const Material& m = mats[particles_.type[i]];
     tMin = std::min(tMin, dem::rayleighTime(particles_.radius[i], m.density, m.youngsModulus, m.poissonRatio));
+  }
+  // and of the smallest sphere each insertion of the case can make: a rate-based insertion is checked
+  // before its first particle, a restart before load() brings the particles
+  for (const auto& ins : inserters_) {
+    const SmallestInserted s = ins->smallest();
+    if (s.material < 0) continue;
+    const Material& m = mats[s.material];
+    tMin = std::min(tMin, dem::rayleighTime(0.5 * s.diameter, m.density, m.youngsModulus, m.poissonRatio));
   }
   return tMin;
 }

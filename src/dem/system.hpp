@@ -2,6 +2,7 @@
 // The DEM half of the solver: particles, materials, walls, contacts, insertion, outlets, integration.
 // Contract used by the application loop and the coupling:
 //   System(root, domain, gravity)  reads the case sections it owns and inserts the initial particles
+//                                  (InitialParticles::FromCheckpoint: none; load() brings them)
 //   step(dt)                       one velocity-Verlet step (forces incl. particles().externalForce)
 //   checkHealth(step, time)        throws DivergenceError on NaN/Inf or a particle leaving the domain
 //   checkTimeStep(dt)              dt against the Rayleigh time (warning > 20 %, error > 50 %)
@@ -50,20 +51,26 @@ struct EnergyBalance {
   double total() const { return translational + rotational + gravitational + elastic; }
 };
 
+/// Whether the constructor inserts the case's initial particles, or leaves the system empty for a
+/// restart (load() then brings the particles, lists and inserter states of the checkpoint).
+enum class InitialParticles { Insert, FromCheckpoint };
+
 class System {
  public:
-  System(Params& root, const Domain& domain, const Vec3& gravity);
+  System(Params& root, const Domain& domain, const Vec3& gravity,
+         InitialParticles initial = InitialParticles::Insert);
 
   void step(double dt);
   void checkHealth(long long step, double time) const;
-  /// dt against the Rayleigh time of the smallest/softest particle present.
+  /// dt against the Rayleigh time of the smallest/softest particle present or insertable.
   TimeStepStatus checkTimeStep(double dt) const;
 
   ParticleSet& particles() { return particles_; }
   const ParticleSet& particles() const { return particles_; }
   const std::vector<Material>& materials() const { return table_.materials(); }
   const ContactTable& contactTable() const { return table_; }
-  /// Rayleigh time of the smallest/softest particle (s); +inf without particles.
+  /// Rayleigh time of the smallest/softest particle present or that an insertion can make (s);
+  /// +inf without either.
   double rayleighTime() const;
   PhaseTimers& timers() { return timers_; }
 

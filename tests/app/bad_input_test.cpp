@@ -140,6 +140,20 @@ TEST(BadInput, TimeStepAboveStabilityLimit) {
                    {1, {"time.dem_step", "Rayleigh time", "at most 50 %"}});
 }
 
+// A rate-based insertion makes its particles later in the run: the step is checked against its
+// smallest sphere (0.4 mm here, 10x smaller than the lattice's) before the run starts.
+TEST(BadInput, TimeStepAboveStabilityLimitOfARateInsertionsParticles) {
+  const std::string rate = R"(  - {type: rate, material: glass, corner: [0.002, 0.002, 0.04], edge_a: [0.01, 0, 0], edge_b: [0, 0.01, 0],
+     mass_flow_rate: 0.001, start: 0.005, end: 0.01, size: {distribution: discrete, diameters: [0.0004, 0.001],
+     mass_fractions: [0.5, 0.5]}}
+output:)";
+  expectCheckFails(replaced("output:", rate), {1, {"time.dem_step", "Rayleigh time", "at most 50 %"}});
+  // and without the small spheres the same step passes
+  TempDir dir;
+  const auto ok = grainflow("check " + dir.write("case.yaml", kValidCase));
+  EXPECT_EQ(ok.exitCode, 0) << ok.output;
+}
+
 TEST(BadInput, VectorWithTwoComponents) {
   expectCheckFails(kValidCase + "gravity: [0.0, -9.81]\n", {1, {"gravity", "a list of 2 item(s)", "3 numbers"}});
 }

@@ -15,9 +15,10 @@ struct DemCase {
   Params params;
   Domain domain;
   std::unique_ptr<System> system;
-  DemCase(const std::string& yaml, const Vec3& gravity) : params(Params::loadString(yaml, "test.yaml")) {
+  DemCase(const std::string& yaml, const Vec3& gravity, InitialParticles initial = InitialParticles::Insert)
+      : params(Params::loadString(yaml, "test.yaml")) {
     domain = Domain::read(params);
-    system = std::make_unique<System>(params, domain, gravity);
+    system = std::make_unique<System>(params, domain, gravity, initial);
     params.checkUnknownKeys();
   }
   System& operator*() { return *system; }

@@ -55,6 +55,26 @@ TEST(DemInsertion, LogNormalMedianAndRosinRammlerD63) {
   EXPECT_NEAR(fine / total, (1 - std::exp(-1.0) - fMin) / (fMax - fMin), 0.01);
 }
 
+// minDiameter() bounds every sample from below and is reached (within 2 % for the continuous
+// distributions' truncation); a discrete diameter with mass fraction 0 is never drawn, so it is
+// not the minimum.
+TEST(DemInsertion, SmallestDiameterBoundsTheSamples) {
+  const std::vector<std::pair<std::string, double>> cases = {
+      {"size: {distribution: constant, diameter: 0.003}", 0.003},
+      {"size: {distribution: discrete, diameters: [0.001, 0.002, 0.004], mass_fractions: [0, 0.5, 0.5]}", 0.002},
+      {"size: {distribution: log_normal, median_diameter: 0.002, sigma: 0.3, min_diameter: 0.0015}", 0.0015},
+      {"size: {distribution: rosin_rammler, characteristic_diameter: 0.002, spread: 3}", 0.001}};
+  for (const auto& [yaml, expected] : cases) {
+    auto dist = distribution(yaml);
+    EXPECT_DOUBLE_EQ(dist->minDiameter(), expected) << yaml;
+    Random rng(4);
+    double smallest = 1.0;
+    for (int k = 0; k < 20000; ++k) smallest = std::min(smallest, dist->sample(rng));
+    EXPECT_GE(smallest, dist->minDiameter()) << yaml;
+    EXPECT_LT(smallest, 1.02 * dist->minDiameter()) << yaml;
+  }
+}
+
 TEST(DemInsertion, SameSeedSameParticles) {
   auto a = distribution("size: {distribution: log_normal, median_diameter: 0.002, sigma: 0.2}");
   Random r1(9), r2(9);

@@ -284,6 +284,32 @@ TEST(DemSystem, RestartContinuesBitIdentically) {
   EXPECT_EQ(snapshot(*restarted), snapshot(*continuous));
 }
 
+// A system built for a restart inserts nothing (the case's random packing would be discarded), yet
+// after load() it continues exactly like the uninterrupted run, on 1 and 2 threads, and the
+// time-step check already knows the case's spheres before the load.
+TEST(DemSystem, RestartIntoASystemBuiltWithoutInsertionContinuesBitIdentically) {
+  for (int threads : {1, 2}) {
+    setThreadCount(threads);
+    const std::string yaml = bedCase(threads, "  rolling: epsd\n  rolling_friction: 0.1");
+    DemCase continuous(yaml, {0, 0, -9.81});
+    for (int s = 0; s < 500; ++s) continuous->step(2e-5);
+    const std::vector<char> saved = snapshot(*continuous);
+    for (int s = 0; s < 500; ++s) continuous->step(2e-5);
+
+    DemCase restarted(yaml, {0, 0, -9.81}, InitialParticles::FromCheckpoint);
+    EXPECT_EQ(restarted->particles().size(), 0u);
+    EXPECT_TRUE(std::isfinite(restarted->rayleighTime()));
+    EXPECT_LE(restarted->rayleighTime(), continuous->rayleighTime());
+    BinaryReader reader(saved.data(), saved.size());
+    restarted->load(reader);
+    EXPECT_TRUE(reader.atEnd());
+    EXPECT_EQ(restarted->particles().size(), continuous->particles().size());
+    for (int s = 0; s < 500; ++s) restarted->step(2e-5);
+    EXPECT_EQ(snapshot(*restarted), snapshot(*continuous)) << threads << " threads";
+  }
+  setThreadCount(1);
+}
+
 // External forces are sized on demand: a DEM-only system holds none (48 B per particle less);
 // enabled with zero values they change nothing; once enabled they stay one per particle through
 // insertion, removal, reordering and a restart, and an all-zero set is dropped at load.

@@ -47,6 +47,12 @@ class CsvInsertion final : public Inserter {
     }
     return rows_.size();
   }
+  SmallestInserted smallest() const override {
+    SmallestInserted s;
+    for (const auto& v : rows_)
+      if (s.material < 0 || 2.0 * v[3] < s.diameter) s = {common_.material, 2.0 * v[3]};
+    return s;
+  }
   void save(BinaryWriter& out) const override { out.put<std::uint8_t>(done_); }
   void load(BinaryReader& in) override { done_ = in.get<std::uint8_t>() != 0; }
 

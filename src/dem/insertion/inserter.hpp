@@ -24,11 +24,19 @@ struct InsertionContext {
   const Domain& domain;
 };
 
+/// The smallest sphere an insertion can make (material index and diameter, m): the DEM step is
+/// checked against its Rayleigh time before the run starts, rate-based insertions included.
+struct SmallestInserted {
+  int material = -1;  // -1: the insertion makes no particles
+  double diameter = 0.0;
+};
+
 class Inserter {
  public:
   virtual ~Inserter() = default;
   /// Inserts the particles due in (time, time + dt]; returns how many.
   virtual std::size_t insert(InsertionContext& ctx, double time, double dt) = 0;
+  virtual SmallestInserted smallest() const = 0;
   virtual void save(BinaryWriter& out) const = 0;
   virtual void load(BinaryReader& in) = 0;
 };
@@ -43,6 +51,7 @@ struct InsertionCommon {
   /// Set by the System before constructing inserters (the registry passes only Params).
   static const ContactTable*& table();
   explicit InsertionCommon(Params& p);
+  SmallestInserted smallest() const { return {material, size->minDiameter()}; }
 };
 
 /// Uniform grid of spheres for overlap checks during insertion.

@@ -36,6 +36,7 @@ class LatticeInsertion final : public Inserter {
         }
     return added;
   }
+  SmallestInserted smallest() const override { return common_.smallest(); }
   void save(BinaryWriter& out) const override { out.put<std::uint8_t>(done_); }
   void load(BinaryReader& in) override { done_ = in.get<std::uint8_t>() != 0; }
 

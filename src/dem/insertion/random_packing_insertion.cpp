@@ -138,6 +138,7 @@ class RandomPackingInsertion final : public Inserter {
     return sites;
   }
 
+  SmallestInserted smallest() const override { return common_.smallest(); }
   void save(BinaryWriter& out) const override { out.put<std::uint8_t>(done_); }
   void load(BinaryReader& in) override { done_ = in.get<std::uint8_t>() != 0; }
 

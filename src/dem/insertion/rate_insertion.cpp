@@ -55,6 +55,7 @@ class RateInsertion final : public Inserter {
     }
     return added;
   }
+  SmallestInserted smallest() const override { return common_.smallest(); }
   void save(BinaryWriter& out) const override {
     out.put(pendingMass_);
     out.put(nextDiameter_);

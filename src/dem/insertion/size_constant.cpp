@@ -9,6 +9,7 @@ class ConstantSize final : public SizeDistribution {
       : diameter_(p.real({"diameter", "m", "constant: particle diameter", Range::positive()}, 0.002)) {}
   double sample(Random&) const override { return diameter_; }
   double maxDiameter() const override { return diameter_; }
+  double minDiameter() const override { return diameter_; }
 
  private:
   double diameter_;

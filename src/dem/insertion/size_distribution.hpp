@@ -14,6 +14,8 @@ class SizeDistribution {
   virtual double sample(Random& rng) const = 0;
   /// Largest diameter the distribution can return (m).
   virtual double maxDiameter() const = 0;
+  /// Smallest diameter the distribution can return (m): the time-step check uses it.
+  virtual double minDiameter() const = 0;
 };
 
 /// Reads `size` (a section with `distribution: <name>` and that model's keys) from `p`.

@@ -24,6 +24,7 @@ class LogNormalSize final : public SizeDistribution {
     return median_;
   }
   double maxDiameter() const override { return max_; }
+  double minDiameter() const override { return min_; }  // (the fallback, d50, is inside)
 
  private:
   double median_, sigma_, min_, max_;

@@ -29,6 +29,7 @@ class RosinRammlerSize final : public SizeDistribution {
     return min_;
   }
   double maxDiameter() const override { return max_; }
+  double minDiameter() const override { return min_; }
 
  private:
   double massFractionBelow(double d) const { return 1.0 - std::exp(-std::pow(d / d63_, spread_)); }
