@@ -1,4 +1,5 @@
 // Log-normal number distribution: ln d ~ N(ln d50, sigma^2), truncated to [min, max].
+#include <algorithm>
 #include <cmath>
 
 #include "dem/insertion/size_distribution.hpp"
@@ -24,7 +25,7 @@ class LogNormalSize final : public SizeDistribution {
     return median_;
   }
   double maxDiameter() const override { return max_; }
-  double minDiameter() const override { return min_; }  // (the fallback, d50, is inside)
+  double minDiameter() const override { return std::min(min_, median_); }  // (d50: sample()'s fallback)
 
  private:
   double median_, sigma_, min_, max_;
