@@ -62,6 +62,7 @@ TEST(DemInsertion, SmallestDiameterBoundsTheSamples) {
   const std::vector<std::pair<std::string, double>> cases = {
       {"size: {distribution: constant, diameter: 0.003}", 0.003},
       {"size: {distribution: discrete, diameters: [0.001, 0.002, 0.004], mass_fractions: [0, 0.5, 0.5]}", 0.002},
+      {"size: {distribution: discrete, diameters: [0.004, 0.001], mass_fractions: [1, 0]}", 0.004},
       {"size: {distribution: log_normal, median_diameter: 0.002, sigma: 0.3, min_diameter: 0.0015}", 0.0015},
       {"size: {distribution: rosin_rammler, characteristic_diameter: 0.002, spread: 3}", 0.001}};
   for (const auto& [yaml, expected] : cases) {

@@ -33,7 +33,7 @@ class DiscreteSize final : public SizeDistribution {
   }
   double maxDiameter() const override { return *std::max_element(diameters_.begin(), diameters_.end()); }
   double minDiameter() const override {  // of the diameters that can be drawn (a positive fraction)
-    double smallest = diameters_.back();
+    double smallest = maxDiameter();
     for (std::size_t k = 0; k < diameters_.size(); ++k)
       if (cumulative_[k] > (k == 0 ? 0.0 : cumulative_[k - 1])) smallest = std::min(smallest, diameters_[k]);
     return smallest;
