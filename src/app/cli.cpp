@@ -33,10 +33,10 @@ int commandCheck(const std::string& caseFile, int threads) {
   std::fputs(simulation->resolvedCase().c_str(), stdout);
   const auto& particles = simulation->dem().particles();
   std::fputs(fmt::format("# particles: {}\n", particles.size()).c_str(), stdout);
-  if (std::isfinite(simulation->dem().rayleighTime()))  // (particles present or insertable)
+  const double rayleigh = simulation->dem().rayleighTime();  // (one pass over the particles)
+  if (std::isfinite(rayleigh))                                 // (particles present or insertable)
     std::fputs(fmt::format("# DEM step {:g} s = {:.1f} % of the Rayleigh time {:.4g} s\n", simulation->settings().demStep,
-                           100.0 * simulation->settings().demStep / simulation->dem().rayleighTime(),
-                           simulation->dem().rayleighTime())
+                           100.0 * simulation->settings().demStep / rayleigh, rayleigh)
                    .c_str(),
                stdout);
   return kExitOk;
