@@ -427,6 +427,14 @@ struct BlockSweep {
   /// mispredicted branch each, rows hold ~6 candidates).
   [[gnu::always_inline]] void gatherRun(std::size_t rb, std::uint32_t base, std::uint32_t count,
                                         std::uint32_t start) {
+    if (attribute == 0) gatherRunOf<true>(rb, base, count, start);
+    else gatherRunOf<false>(rb, base, count, start);
+  }
+  /// Identical: every particle has particle 0's radius, mass and type (attribute == 0); the
+  /// batch then holds no per-pair radii, masses or coefficient indices (ContactBatch::identical).
+  template <bool Identical>
+  [[gnu::always_inline]] void gatherRunOf(std::size_t rb, std::uint32_t base, std::uint32_t count,
+                                          std::uint32_t start) {
     ContactBatch& b = *batch;
     const Vec3* const x = position + rb;
     const Vec3* const v = velocity + rb;
@@ -438,23 +446,54 @@ struct BlockSweep {
     const std::uint32_t* const partnerOf = partner + base;
     Vec3* const h = history + base;
     const PeriodicBox localBox = box;  // a local copy: the batch stores cannot change it (no reloads)
+    const double r0 = r[0], identicalSum = r0 + r0;
     std::uint32_t kept = start;
     for (std::uint32_t c = 0; c < count; ++c) {
       const std::uint32_t row = b.owner[c];
       const std::uint32_t j = partnerOf[c];
       const Vec3 d = localBox.minimumImage(x[row] - position[j]);
-      const double rj = r[j & at];
+      const double rj = Identical ? r0 : r[j & at];
       const double dist2 = normSquared(d);
-      const double rsum = r[(rowIndex + row) & at] + rj;
+      const double rsum = Identical ? identicalSum : r[(rowIndex + row) & at] + rj;
       b.entry[kept] = base + c;
       b.row[kept] = row;
       b.partner[kept] = j;
       b.dx[kept] = d.x;
       b.dy[kept] = d.y;
       b.dz[kept] = d.z;
-      b.rj[kept] = rj;
+      if constexpr (!Identical) b.rj[kept] = rj;
       kept += !(dist2 >= rsum * rsum) ? 1u : 0u;  // touching: keep the entry
     }
+    if constexpr (Identical) {
+      b.identical = true;
+      b.identicalRadius = r0;
+      b.identicalMass = m[0];
+      b.pairIndex[0] = static_cast<std::uint32_t>(type[0]) * types + static_cast<std::uint32_t>(type[0]);
+      b.uniform = true;
+      for (std::uint32_t e = start; e < kept; ++e) {
+        const std::uint32_t j = b.partner[e], row = b.row[e];
+        storeLane(b.hx, b.hy, b.hz, e, history[b.entry[e]]);
+        if constexpr (R == RollingLaw::Epsd) {
+          const Vec3 rh = rollingHistory[b.entry[e]];
+          storeLane(b.rhx, b.rhy, b.rhz, e, rh);
+        }
+        const Vec3 wi = w[row], wj = angularVelocity[j];
+        const Vec3 dv = v[row] - velocity[j];
+        const Vec3 s = r0 * wi + r0 * wj;
+        storeLane(b.dvx, b.dvy, b.dvz, e, dv);
+        storeLane(b.sx, b.sy, b.sz, e, s);
+        if constexpr (R != RollingLaw::None) {
+          const Vec3 dw = wi - wj;
+          storeLane(b.dwx, b.dwy, b.dwz, e, dw);
+        }
+      }
+      b.size = kept;
+      std::memset(static_cast<void*>(h), 0, sizeof(Vec3) * count);
+      if constexpr (R == RollingLaw::Epsd)
+        std::memset(static_cast<void*>(rollingHistory + base), 0, sizeof(Vec3) * count);
+      return;
+    }
+    b.identical = false;
     bool uniform = b.uniform;
     std::uint32_t firstPair = start > 0 ? b.pairIndex[0] : 0;
     for (std::uint32_t e = start; e < kept; ++e) {

@@ -29,6 +29,11 @@ struct ContactBatch {
 
   std::uint32_t size = 0;  // touching pairs gathered
   bool uniform = true;     // all pairs of the batch use coefficients pairIndex[0]
+  // Every particle has the same radius and mass (a bed of identical spheres, one material): the
+  // gather then leaves ri, rj, mi, mj and pairIndex[1..] unwritten, and the evaluation takes
+  // these two values (and pairIndex[0]) for every pair. Same operations: same results.
+  bool identical = false;
+  double identicalRadius = 0.0, identicalMass = 0.0;
   // Rows of the run (index in the run: particle rb + row).
   alignas(64) std::uint32_t owner[kCapacity + kRowFill];  // row of each candidate
   alignas(64) std::uint32_t row[kCapacity];               // row of each touching pair
@@ -61,14 +66,16 @@ struct ContactBatch {
 }
 
 /// Evaluates the contact law for every gathered pair (contactForce, as for one contact).
-template <NormalLaw N, RollingLaw R, CohesionLaw C, bool Uniform>
+template <NormalLaw N, RollingLaw R, CohesionLaw C, bool Uniform, bool Identical = false>
 GF_VECTOR_CLONES void evaluateBatchAs(ContactBatch& b, const PairCoefficients* coefficients, double dt) {
   const std::uint32_t count = b.size;
   const PairCoefficients uniformPair = coefficients[b.pairIndex[0]];
+  const double radius = b.identicalRadius, mass = b.identicalMass;
   for (std::uint32_t e = 0; e < count; ++e) {
     const Vec3 d{b.dx[e], b.dy[e], b.dz[e]};
     const double dist = sqrtNonNegative(normSquared(d));  // as in the gather's contact test
-    const double ri = b.ri[e], rj = b.rj[e], mi = b.mi[e], mj = b.mj[e];
+    const double ri = Identical ? radius : b.ri[e], rj = Identical ? radius : b.rj[e];
+    const double mi = Identical ? mass : b.mi[e], mj = Identical ? mass : b.mj[e];
     const double rsum = ri + rj;
     ContactGeometry g;
     g.normal = (1.0 / dist) * d;
@@ -102,7 +109,8 @@ GF_VECTOR_CLONES void evaluateBatchAs(ContactBatch& b, const PairCoefficients* c
 template <NormalLaw N, RollingLaw R, CohesionLaw C>
 inline void evaluateBatch(ContactBatch& b, const PairCoefficients* coefficients, double dt) {
   if (b.size == 0) return;
-  if (b.uniform) evaluateBatchAs<N, R, C, true>(b, coefficients, dt);
+  if (b.identical) evaluateBatchAs<N, R, C, true, true>(b, coefficients, dt);
+  else if (b.uniform) evaluateBatchAs<N, R, C, true>(b, coefficients, dt);
   else evaluateBatchAs<N, R, C, false>(b, coefficients, dt);
 }
 
