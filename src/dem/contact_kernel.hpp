@@ -535,6 +535,13 @@ struct BlockSweep {
   /// Adds the evaluated pairs of the batch in list order: to their row's sum (b.rowForce/Torque,
   /// added to the row's particle in finishRun) and to the partners.
   [[gnu::always_inline]] void scatterRun() {
+    if (batch->template torqueArm<R>()) scatterRunOf<true>();
+    else scatterRunOf<false>();
+  }
+  /// TorqueArm: ContactBatch::torqueArm (ti = 0 - y, tj = -y from y = r n x F_t, the bits of the
+  /// general formulas).
+  template <bool TorqueArm>
+  [[gnu::always_inline]] void scatterRunOf() {
     ContactBatch& b = *batch;
     Vec3* const f = force;
     Vec3* const tq = torque;
@@ -544,9 +551,17 @@ struct BlockSweep {
     for (std::uint32_t e = 0; e < count; ++e) {
       const std::uint32_t j = b.partner[e], k = b.entry[e], row = b.row[e];
       const Vec3 fe = loadLane(b.fx, b.fy, b.fz, e);
-      const Vec3 tqj = loadLane(b.tjx, b.tjy, b.tjz, e);
+      Vec3 tqi, tqj;
+      if constexpr (TorqueArm) {
+        const Vec3 arm = loadLane(b.tix, b.tiy, b.tiz, e);
+        tqi = Vec3{} - arm;
+        tqj = Vec3{-arm.x, -arm.y, -arm.z};
+      } else {
+        tqi = loadLane(b.tix, b.tiy, b.tiz, e);
+        tqj = loadLane(b.tjx, b.tjy, b.tjz, e);
+      }
       b.rowForce[row] += fe;
-      b.rowTorque[row] += Vec3{b.tix[e], b.tiy[e], b.tiz[e]};
+      b.rowTorque[row] += tqi;
       h[k] = Vec3{b.hx[e], b.hy[e], b.hz[e]};
       if constexpr (R == RollingLaw::Epsd) rollingHistory[k] = Vec3{b.rhx[e], b.rhy[e], b.rhz[e]};
       if (j < blockEnd) {

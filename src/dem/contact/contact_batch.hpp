@@ -34,6 +34,10 @@ struct ContactBatch {
   // these two values (and pairIndex[0]) for every pair. Same operations: same results.
   bool identical = false;
   double identicalRadius = 0.0, identicalMass = 0.0;
+  /// Identical spheres without rolling resistance: the evaluation stores only r n x F_t (in
+  /// tix/y/z), from which the scatter forms both torques.
+  template <RollingLaw R>
+  bool torqueArm() const { return identical && R == RollingLaw::None; }
   // Rows of the run (index in the run: particle rb + row).
   alignas(64) std::uint32_t owner[kCapacity + kRowFill];  // row of each candidate
   alignas(64) std::uint32_t row[kCapacity];               // row of each touching pair
@@ -51,7 +55,7 @@ struct ContactBatch {
   alignas(64) double rhx[kCapacity], rhy[kCapacity], rhz[kCapacity];  // rolling history (EPSD), in/out
   // Outputs.
   alignas(64) double fx[kCapacity], fy[kCapacity], fz[kCapacity];     // force on i (j: the negative)
-  alignas(64) double tix[kCapacity], tiy[kCapacity], tiz[kCapacity];  // torque on i
+  alignas(64) double tix[kCapacity], tiy[kCapacity], tiz[kCapacity];  // torque on i (TorqueArm: r n x F_t)
   alignas(64) double tjx[kCapacity], tjy[kCapacity], tjz[kCapacity];  // torque on j
 };
 
@@ -96,11 +100,17 @@ GF_VECTOR_CLONES void evaluateBatchAs(ContactBatch& b, const PairCoefficients* c
     const ContactResult r = contactForce<N, R, C, true>(c, g, history, &rollingHistory, dt);
     // Torque of the tangential force: -R n x F_t on both (contact point -R_i n from i, +R_j n from j).
     const Vec3 nxf = cross(g.normal, r.tangential);
-    const Vec3 ti = r.rollingTorque - ri * nxf;
-    const Vec3 tj = -rj * nxf - r.rollingTorque;
     storeLane(b.fx, b.fy, b.fz, e, r.force);
-    storeLane(b.tix, b.tiy, b.tiz, e, ti);
-    storeLane(b.tjx, b.tjy, b.tjz, e, tj);
+    if constexpr (Identical && R == RollingLaw::None) {
+      // r_i = r_j, no rolling torque: ti = 0 - r n x F_t and tj = -r n x F_t (the same bits as
+      // the general lines below) both follow from r n x F_t, which is all the batch keeps.
+      storeLane(b.tix, b.tiy, b.tiz, e, ri * nxf);
+    } else {
+      const Vec3 ti = r.rollingTorque - ri * nxf;
+      const Vec3 tj = -rj * nxf - r.rollingTorque;
+      storeLane(b.tix, b.tiy, b.tiz, e, ti);
+      storeLane(b.tjx, b.tjy, b.tjz, e, tj);
+    }
     storeLane(b.hx, b.hy, b.hz, e, history);
     if constexpr (R == RollingLaw::Epsd) storeLane(b.rhx, b.rhy, b.rhz, e, rollingHistory);
   }
