@@ -2,7 +2,9 @@
 // oblique impact, sphere on an incline, rolling resistance.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include "dem/contact/hertz_mindlin.hpp"
@@ -12,6 +14,12 @@
 
 namespace gf::dem {
 namespace {
+
+/// True unless every component is +0.0 bit for bit.
+bool anyBitSet(const Vec3& v) {
+  return std::bit_cast<std::uint64_t>(v.x) != 0 || std::bit_cast<std::uint64_t>(v.y) != 0 ||
+         std::bit_cast<std::uint64_t>(v.z) != 0;
+}
 
 using test::DemCase;
 using test::materialsYaml;
@@ -181,6 +189,51 @@ TEST(DemContact, ObliqueImpactStickingReversesContactPointVelocity) {
   EXPECT_LT(std::abs(contactPointAfter), vt);
   EXPECT_GT(std::abs(contactPointAfter - vt), 0.1 * vt);  // the spring acted
   EXPECT_LT(std::abs(contactPointAfter - vt), 3.5 * mu * (1 + e) * vn);  // less than gross sliding
+}
+
+/// Two equal spheres in an oblique head-on impact (sticking, so the tangential spring holds
+/// history), stepped until they part; then the same approach again from the start. The second
+/// impact must be the first one bit for bit: the pair, still listed (within the skin), lost its
+/// history when it stopped touching.
+TEST(DemContact, PairThatPartsLosesItsHistoryAndRepeatsTheImpact) {
+  for (const std::string law : {"hertz_mindlin", "hooke"}) {
+    DemCase c(materialsYaml(law, 0.9, 0.5, 1e7, 0.3, law == "hooke" ? "  normal_stiffness: 1e4" : "") +
+                  "domain: {min: [-0.01, -0.01, -0.01], max: [0.01, 0.01, 0.01]}\n",
+              {0, 0, 0});
+    const Vec3 x0{-kRadius - 1e-7, 0, 0}, x1{kRadius + 1e-7, 0, 0}, v0{0.1, 0.004, 0}, v1{-0.1, -0.004, 0};
+    c->particles().add(0, 0, kRadius, kDensity, x0, v0);
+    c->particles().add(1, 0, kRadius, kDensity, x1, v1);
+    auto impact = [&]() {
+      ParticleSet& p = c->particles();
+      p.position[0] = x0;
+      p.position[1] = x1;
+      p.velocity[0] = v0;
+      p.velocity[1] = v1;
+      p.angularVelocity[0] = p.angularVelocity[1] = Vec3{};
+      c->refresh();
+      bool touched = false, held = false;
+      for (int s = 0; s < 200000; ++s) {
+        c->step(2e-7);
+        const NeighbourList& list = c->neighbourList();
+        const bool touching = p.position[1].x - p.position[0].x < 2.0 * kRadius;
+        if (touching) {
+          touched = true;
+          held = held || (list.entries() == 1 && anyBitSet(list.tangentialHistory[0]));
+        } else if (touched) {
+          EXPECT_EQ(list.entries(), 1u) << law;  // still listed
+          if (list.entries() == 1) EXPECT_FALSE(anyBitSet(list.tangentialHistory[0])) << law;
+          break;
+        }
+      }
+      EXPECT_TRUE(touched && held) << law;
+      return std::pair<Vec3, Vec3>{p.velocity[1] - p.velocity[0], p.angularVelocity[0]};
+    };
+    const auto first = impact();
+    const auto second = impact();
+    EXPECT_GT(std::abs(first.second.z), 0.0) << law;  // the tangential spring spun the spheres
+    EXPECT_EQ(first.first, second.first) << law;
+    EXPECT_EQ(first.second, second.second) << law;
+  }
 }
 
 /// Sphere released on an incline (gravity tilted by theta), returns acceleration along the slope.
