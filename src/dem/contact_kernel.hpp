@@ -470,27 +470,9 @@ struct BlockSweep {
       b.identicalMass = m[0];
       b.pairIndex[0] = static_cast<std::uint32_t>(type[0]) * types + static_cast<std::uint32_t>(type[0]);
       b.uniform = true;
-      for (std::uint32_t e = start; e < kept; ++e) {
-        const std::uint32_t j = b.partner[e], row = b.row[e];
-        storeLane(b.hx, b.hy, b.hz, e, history[b.entry[e]]);
-        if constexpr (R == RollingLaw::Epsd) {
-          const Vec3 rh = rollingHistory[b.entry[e]];
-          storeLane(b.rhx, b.rhy, b.rhz, e, rh);
-        }
-        const Vec3 wi = w[row], wj = angularVelocity[j];
-        const Vec3 dv = v[row] - velocity[j];
-        const Vec3 s = r0 * wi + r0 * wj;
-        storeLane(b.dvx, b.dvy, b.dvz, e, dv);
-        storeLane(b.sx, b.sy, b.sz, e, s);
-        if constexpr (R != RollingLaw::None) {
-          const Vec3 dw = wi - wj;
-          storeLane(b.dwx, b.dwy, b.dwz, e, dw);
-        }
-      }
+      for (std::uint32_t e = start; e < kept; ++e) gatherPairMotion(b, e, v, w, r0, r0);
       b.size = kept;
-      std::memset(static_cast<void*>(h), 0, sizeof(Vec3) * count);
-      if constexpr (R == RollingLaw::Epsd)
-        std::memset(static_cast<void*>(rollingHistory + base), 0, sizeof(Vec3) * count);
+      clearRunHistory(h, base, count);
       return;
     }
     b.identical = false;
@@ -498,23 +480,9 @@ struct BlockSweep {
     std::uint32_t firstPair = start > 0 ? b.pairIndex[0] : 0;
     for (std::uint32_t e = start; e < kept; ++e) {
       const std::uint32_t j = b.partner[e], row = b.row[e];
-      // History travels with the touching entry (read here, for the touching pairs only).
-      storeLane(b.hx, b.hy, b.hz, e, history[b.entry[e]]);
-      if constexpr (R == RollingLaw::Epsd) {
-        const Vec3 rh = rollingHistory[b.entry[e]];
-        storeLane(b.rhx, b.rhy, b.rhz, e, rh);
-      }
       const std::uint32_t i = (rowIndex + row) & at;  // (the row's particle for its constants)
-      const double rj = b.rj[e], rowRadius = r[i];
-      const Vec3 wi = w[row], wj = angularVelocity[j];
-      const Vec3 dv = v[row] - velocity[j];
-      const Vec3 s = rowRadius * wi + rj * wj;
-      storeLane(b.dvx, b.dvy, b.dvz, e, dv);
-      storeLane(b.sx, b.sy, b.sz, e, s);
-      if constexpr (R != RollingLaw::None) {
-        const Vec3 dw = wi - wj;
-        storeLane(b.dwx, b.dwy, b.dwz, e, dw);
-      }
+      const double rowRadius = r[i];
+      gatherPairMotion(b, e, v, w, rowRadius, b.rj[e]);
       b.ri[e] = rowRadius;
       b.mi[e] = m[i];
       b.mj[e] = m[j & at];
@@ -525,8 +493,34 @@ struct BlockSweep {
     }
     b.uniform = uniform;
     b.size = kept;
-    // The list keeps zero history (pairs not in contact lose theirs; the touching ones get theirs
-    // back in scatterRun): one block clear of the run's entries instead of a store per candidate.
+    clearRunHistory(h, base, count);
+  }
+
+  /// Second gather loop, one touching pair e: its history (which travels with the touching entry:
+  /// read here, for the touching pairs only), relative velocity dv, s = r_i w_i + r_j w_j and, with
+  /// rolling resistance, the relative spin.
+  [[gnu::always_inline]] void gatherPairMotion(ContactBatch& b, std::uint32_t e, const Vec3* v, const Vec3* w,
+                                               double ri, double rj) const {
+    const std::uint32_t j = b.partner[e], row = b.row[e];
+    storeLane(b.hx, b.hy, b.hz, e, history[b.entry[e]]);
+    if constexpr (R == RollingLaw::Epsd) {
+      const Vec3 rh = rollingHistory[b.entry[e]];
+      storeLane(b.rhx, b.rhy, b.rhz, e, rh);
+    }
+    const Vec3 wi = w[row], wj = angularVelocity[j];
+    const Vec3 dv = v[row] - velocity[j];
+    const Vec3 s = ri * wi + rj * wj;
+    storeLane(b.dvx, b.dvy, b.dvz, e, dv);
+    storeLane(b.sx, b.sy, b.sz, e, s);
+    if constexpr (R != RollingLaw::None) {
+      const Vec3 dw = wi - wj;
+      storeLane(b.dwx, b.dwy, b.dwz, e, dw);
+    }
+  }
+
+  /// The list keeps zero history (pairs not in contact lose theirs; the touching ones get theirs
+  /// back in scatterRun): one block clear of the run's entries instead of a store per candidate.
+  [[gnu::always_inline]] void clearRunHistory(Vec3* h, std::uint32_t base, std::uint32_t count) const {
     std::memset(static_cast<void*>(h), 0, sizeof(Vec3) * count);
     if constexpr (R == RollingLaw::Epsd)
       std::memset(static_cast<void*>(rollingHistory + base), 0, sizeof(Vec3) * count);
