@@ -444,7 +444,6 @@ struct BlockSweep {
     const std::uint32_t at = attribute;
     const auto rowIndex = static_cast<std::uint32_t>(rb);
     const std::uint32_t* const partnerOf = partner + base;
-    Vec3* const h = history + base;
     const PeriodicBox localBox = box;  // a local copy: the batch stores cannot change it (no reloads)
     const double r0 = r[0], identicalSum = r0 + r0;
     std::uint32_t kept = start;
@@ -472,7 +471,7 @@ struct BlockSweep {
       b.uniform = true;
       for (std::uint32_t e = start; e < kept; ++e) gatherPairMotion(b, e, v, w, r0, r0);
       b.size = kept;
-      clearRunHistory(h, base, count);
+      clearRunHistory(base, count);
       return;
     }
     b.identical = false;
@@ -493,7 +492,7 @@ struct BlockSweep {
     }
     b.uniform = uniform;
     b.size = kept;
-    clearRunHistory(h, base, count);
+    clearRunHistory(base, count);
   }
 
   /// Second gather loop, one touching pair e: its history (which travels with the touching entry:
@@ -520,8 +519,8 @@ struct BlockSweep {
 
   /// The list keeps zero history (pairs not in contact lose theirs; the touching ones get theirs
   /// back in scatterRun): one block clear of the run's entries instead of a store per candidate.
-  [[gnu::always_inline]] void clearRunHistory(Vec3* h, std::uint32_t base, std::uint32_t count) const {
-    std::memset(static_cast<void*>(h), 0, sizeof(Vec3) * count);
+  [[gnu::always_inline]] void clearRunHistory(std::uint32_t base, std::uint32_t count) const {
+    std::memset(static_cast<void*>(history + base), 0, sizeof(Vec3) * count);
     if constexpr (R == RollingLaw::Epsd)
       std::memset(static_cast<void*>(rollingHistory + base), 0, sizeof(Vec3) * count);
   }

@@ -221,7 +221,9 @@ TEST(DemContact, PairThatPartsLosesItsHistoryAndRepeatsTheImpact) {
           held = held || (list.entries() == 1 && anyBitSet(list.tangentialHistory[0]));
         } else if (touched) {
           EXPECT_EQ(list.entries(), 1u) << law;  // still listed
-          if (list.entries() == 1) EXPECT_FALSE(anyBitSet(list.tangentialHistory[0])) << law;
+          if (list.entries() == 1) {
+            EXPECT_FALSE(anyBitSet(list.tangentialHistory[0])) << law;
+          }
           break;
         }
       }
