@@ -273,10 +273,13 @@ void Coupler::packSamples(const FluidView& fluid, const CouplingFields& fields, 
     return;
   }
   samples_.resize(cells * k);
-  // rows in parallel (disjoint writes)
+  // pieces of rows in parallel (disjoint writes); a piece per call, not a row (the 2 x 30 x 90
+  // bed's rows hold 2 cells: a call per row cost as much as the copying)
   const auto& n = topology_.grid.cells;
-  forEachIndex(static_cast<std::int64_t>(n[2]) * n[1], static_cast<std::int64_t>(n[0]) * k, [&](std::int64_t kj) {
-    packSampleRows(samples_.data(), kj, kj + 1);
+  const std::int64_t rows = static_cast<std::int64_t>(n[2]) * n[1];
+  constexpr std::int64_t kRowsPerPiece = 32;
+  forEachIndex((rows + kRowsPerPiece - 1) / kRowsPerPiece, kRowsPerPiece * n[0] * k, [&](std::int64_t piece) {
+    packSampleRows(samples_.data(), piece * kRowsPerPiece, std::min(rows, (piece + 1) * kRowsPerPiece));
   });
   if (settings_.fluxVelocity) scaleToFluxVelocity(fields.voidFraction);
 }
@@ -288,10 +291,12 @@ void Coupler::packSampleRows(double* out, std::int64_t rowBegin, std::int64_t ro
   const double* const* in = sampleSource_;
   auto pack = [&]<int Channels>(std::integral_constant<int, Channels>) {
     const int kc = Channels > 0 ? Channels : sampleChannels_;
+    int j = static_cast<int>(rowBegin % n[1]), k = static_cast<int>(rowBegin / n[1]);
     for (std::int64_t kj = rowBegin; kj < rowEnd; ++kj) {
-      const std::size_t row = topology_.flat(0, static_cast<int>(kj % n[1]), static_cast<int>(kj / n[1]));
+      const std::size_t row = topology_.flat(0, j, k);
       for (std::size_t q = row; q < row + static_cast<std::size_t>(n[0]); ++q)
         for (int ch = 0; ch < kc; ++ch) out[q * kc + ch] = in[ch][q];
+      if (++j == n[1]) j = 0, ++k;
     }
   };
   if (sampleChannels_ == kStandardChannels) pack(std::integral_constant<int, kStandardChannels>{});

@@ -43,9 +43,11 @@ void CellGrid::build(const std::vector<Vec3>& x, const Vec3& boxMin, const Vec3&
   const std::size_t cells = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
   cellStart.assign(cells + 1, 0);
   cellOf.resize(n);
+  coordOf.resize(n);
   parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t i) {
     int c[3];
     cellOf[i] = static_cast<std::uint32_t>(cellIndex(x[i], c));
+    coordOf[i] = {c[0], c[1], c[2]};
   });
   // Counting sort in place (no copy of the cell starts as fill cursors): count into cell c's own
   // slot, inclusive prefix sum (slot c: end of cell c), then place the particles backwards with
@@ -206,9 +208,7 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
   const std::uint32_t* sorted = grid.sorted.data();
   const std::uint32_t* cellStart = grid.cellStart.data();
   auto appendPartners = [&]<bool Periodic>(std::size_t i, std::vector<std::uint32_t>& out) {
-    const std::uint32_t cell = grid.cellOf[i];
-    const int c[3] = {static_cast<int>(cell % grid.dims[0]), static_cast<int>((cell / grid.dims[0]) % grid.dims[1]),
-                      static_cast<int>(cell / (static_cast<std::uint32_t>(grid.dims[0]) * grid.dims[1]))};
+    const std::array<int, 3>& c = grid.coordOf[i];
     int ny[3], nz[3], runs[2][2];
     const int rx = xCellRuns(c[0], grid.dims[0], grid.xSplit, box.periodic[0], runs);
     const int cy = neighbourCells(c[1], grid.dims[1], box.periodic[1], ny);
@@ -243,7 +243,21 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
                                                                 self, localBox, row + kept, touching);
     }
     if (countingTouches) touchingStart[i + 1] = touching;
-    for (std::uint32_t k = 1; k < kept; ++k) {  // insertion sort (a few entries)
+    constexpr std::uint32_t kRankSorted = 16;
+    if (kept <= kRankSorted) {
+      // Ascending by rank (the partners are distinct: each cell is in one range once): entry k goes
+      // to the number of entries below it. Branch-free, unlike an insertion sort, whose branches
+      // mispredict on the random order of the few entries.
+      std::uint32_t ascending[kRankSorted];
+      for (std::uint32_t k = 0; k < kept; ++k) {
+        std::uint32_t rank = 0;
+        for (std::uint32_t m = 0; m < kept; ++m) rank += row[m] < row[k] ? 1u : 0u;
+        ascending[rank] = row[k];
+      }
+      out.insert(out.end(), ascending, ascending + kept);
+      return;
+    }
+    for (std::uint32_t k = 1; k < kept; ++k) {  // insertion sort (long rows)
       const std::uint32_t value = row[k];
       std::uint32_t m = k;
       for (; m > 0 && row[m - 1] > value; --m) row[m] = row[m - 1];

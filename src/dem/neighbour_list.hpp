@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -137,6 +138,7 @@ struct CellGrid {
   std::vector<std::uint32_t> cellStart;  // size cells + 1
   std::vector<std::uint32_t> sorted;     // particle indices by cell, ascending within a cell
   std::vector<std::uint32_t> cellOf;     // per particle
+  std::vector<std::array<int, 3>> coordOf;  // per particle: its cell's (x, y, z) (no divisions to recover them)
 
   void build(const std::vector<Vec3>& x, const Vec3& boxMin, const Vec3& boxMax, double minCellSize);
   int cellIndex(const Vec3& x, int c[3]) const;
