@@ -65,6 +65,43 @@ TEST(DemNeighbourList, MatchesBruteForceWithPeriodicBoundaries) {
   }
 }
 
+// Each row holds its partners j > i strictly ascending (the force loop reads a row's last entry as
+// its largest partner), on both sorting paths: short rows (by rank) and the long row of a large
+// sphere among small ones (by insertion); the pairs are those of a brute-force search.
+TEST(DemNeighbourList, RowsAreStrictlyAscendingOnBothSortingPaths) {
+  const Domain d = listTestBox({false, false, false});
+  const PeriodicBox box(d);
+  ParticleSet p;
+  p.add(0, 0, 0.003, 2500, {0.006, 0.005, 0.01});  // row 0: every neighbour of the large sphere
+  const ParticleSet small = randomParticles(800, d.max, 11);
+  for (std::size_t i = 0; i < small.size(); ++i)
+    p.add(static_cast<std::int64_t>(i + 1), 0, small.radius[i], 2500, small.position[i]);
+  const double skin = 0.0003;
+  NeighbourList list;
+  list.build(p, box, d.min, d.max, skin, {}, false);
+  std::size_t longest = 0, shortRows = 0;
+  for (std::size_t i = 0; i < list.rows(); ++i) {
+    const std::uint32_t first = list.rowStart[i], last = list.rowStart[i + 1];
+    longest = std::max<std::size_t>(longest, last - first);
+    shortRows += last - first >= 2 && last - first <= 16 ? 1 : 0;
+    for (std::uint32_t k = first; k < last; ++k) {
+      EXPECT_GT(list.partner[k], i) << "row " << i;
+      if (k > first) {
+        EXPECT_LT(list.partner[k - 1], list.partner[k]) << "row " << i << " entry " << k - first;
+      }
+    }
+  }
+  EXPECT_GT(longest, 16u);    // the insertion-sort path ran
+  EXPECT_GT(shortRows, 100u);  // and the rank path, on many rows of several entries
+  std::set<std::pair<std::int64_t, std::int64_t>> expected;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      const double cut = p.radius[i] + p.radius[j] + skin;
+      if (normSquared(p.position[i] - p.position[j]) < cut * cut) expected.insert({i, j});
+    }
+  EXPECT_EQ(listPairs(list, p), expected);
+}
+
 // On a team, build() counts the touching pairs of each row as it lists them; countTouching() (a
 // restart's count) gives the same numbers, periodic or not.
 TEST(DemNeighbourList, BuildCountsTouchingPairsAsCountTouching) {
