@@ -37,6 +37,18 @@ std::set<std::pair<std::int64_t, std::int64_t>> listPairs(const NeighbourList& l
   return out;
 }
 
+// Pairs (i, j), i < j, closer than r_i + r_j + skin (minimum image): what a list must hold.
+std::set<std::pair<std::int64_t, std::int64_t>> bruteForcePairs(const ParticleSet& p, const PeriodicBox& box,
+                                                                 double skin) {
+  std::set<std::pair<std::int64_t, std::int64_t>> out;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      const double cut = p.radius[i] + p.radius[j] + skin;
+      if (normSquared(box.minimumImage(p.position[i] - p.position[j])) < cut * cut) out.insert({i, j});
+    }
+  return out;
+}
+
 // The 12 x 10 x 20 mm box of the list tests, periodic along the given axes.
 Domain listTestBox(std::array<bool, 3> periodic) {
   Domain d;
@@ -54,12 +66,7 @@ TEST(DemNeighbourList, MatchesBruteForceWithPeriodicBoundaries) {
     const double skin = 0.0003;
     NeighbourList list;
     list.build(p, box, d.min, d.max, skin, {}, false);
-    std::set<std::pair<std::int64_t, std::int64_t>> expected;
-    for (std::size_t i = 0; i < p.size(); ++i)
-      for (std::size_t j = i + 1; j < p.size(); ++j) {
-        const double cut = p.radius[i] + p.radius[j] + skin;
-        if (normSquared(box.minimumImage(p.position[i] - p.position[j])) < cut * cut) expected.insert({i, j});
-      }
+    const auto expected = bruteForcePairs(p, box, skin);
     EXPECT_EQ(listPairs(list, p), expected) << "periodic=" << periodic;
     EXPECT_GT(expected.size(), 100u);
   }
@@ -93,13 +100,7 @@ TEST(DemNeighbourList, RowsAreStrictlyAscendingOnBothSortingPaths) {
   }
   EXPECT_GT(longest, 16u);    // the insertion-sort path ran
   EXPECT_GT(shortRows, 100u);  // and the rank path, on many rows of several entries
-  std::set<std::pair<std::int64_t, std::int64_t>> expected;
-  for (std::size_t i = 0; i < p.size(); ++i)
-    for (std::size_t j = i + 1; j < p.size(); ++j) {
-      const double cut = p.radius[i] + p.radius[j] + skin;
-      if (normSquared(p.position[i] - p.position[j]) < cut * cut) expected.insert({i, j});
-    }
-  EXPECT_EQ(listPairs(list, p), expected);
+  EXPECT_EQ(listPairs(list, p), bruteForcePairs(p, box, skin));
 }
 
 // On a team, build() counts the touching pairs of each row as it lists them; countTouching() (a
