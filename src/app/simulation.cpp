@@ -155,8 +155,9 @@ void Simulation::checkCouplingInterval() {
 }
 
 coupling::FluidView Simulation::fluidView() {
-  fluid_->cellVelocity(fluidVelocity_);
-  fluid_->pressureGradient(fluidPressureGradient_);
+  // The coupling reads interior cells only (FluidView, coupler.hpp): no ghost fills.
+  fluid_->cellVelocity(fluidVelocity_, fluid::CellGhosts::Left);
+  fluid_->pressureGradient(fluidPressureGradient_, fluid::CellGhosts::Left);
   coupling::FluidView view;
   for (int c = 0; c < 3; ++c) {
     view.velocity[c] = &fluidVelocity_[c];

@@ -37,7 +37,10 @@
 
 namespace gf::coupling {
 
-/// What the fluid solver lends the coupling (cell-centred fields on the coupling grid).
+/// What the fluid solver lends the coupling (cell-centred fields on the coupling grid). Only the
+/// interior cells are read: every stencil, interpolation and derivative maps its cells into the
+/// interior (clamped at walls, wrapped at periodic sides), so the ghost layers need not be filled
+/// (test FastPaths.FluidViewGhostsAreNeverRead).
 struct FluidView {
   const Field* velocity[3] = {nullptr, nullptr, nullptr};          // interstitial fluid velocity, m/s
   const Field* pressureGradient[3] = {nullptr, nullptr, nullptr};  // grad p, Pa/m

@@ -378,7 +378,7 @@ double Solver::stableTimeStep() const {
   return rate > 0.0 ? cfl_ / rate : std::numeric_limits<double>::max();
 }
 
-void Solver::cellVelocity(Field out[3]) const {
+void Solver::cellVelocity(Field out[3], CellGhosts ghosts) const {
   // Called by the coupling every fluid step: small grids loop serially, as in step(), or on a
   // plane team (each member its planes and their ghosts).
   const SerialFluidScope serial(grid_.interiorCellCount() < kSerialCellsBelow);
@@ -396,12 +396,12 @@ void Solver::cellVelocity(Field out[3]) const {
           o(i, j, k) = 0.5 * (u.data()[f] + u.data()[f + s]);
         }
       };
-      cellLinesAndGhosts(slab, o, line);
+      cellLinesAndGhosts(slab, o, line, ghosts);
     }
   });
 }
 
-void Solver::pressureGradient(Field out[3]) const {
+void Solver::pressureGradient(Field out[3], CellGhosts ghosts) const {
   const SerialFluidScope serial(grid_.interiorCellCount() < kSerialCellsBelow);
   for (int c = 0; c < 3; ++c)
     if (out[c].data().size() != p_.data().size()) out[c] = Field(grid_);
@@ -436,7 +436,7 @@ void Solver::pressureGradient(Field out[3]) const {
           o.data()[id] = (twoD_ && c == 2) ? 0.0 : g + mean;
         }
       };
-      cellLinesAndGhosts(slab, o, line);
+      cellLinesAndGhosts(slab, o, line, ghosts);
     }
   });
 }
@@ -451,16 +451,17 @@ void Solver::forCellPlanes(TeamTuner& tuner, Body&& body) const {
 }
 
 template <class Line>
-void Solver::cellLinesAndGhosts(const PlaneSlab* slab, Field& out, Line&& line) const {
-  // line(l) for the cell lines of the slab's planes (all: threaded loop), then the zero-gradient
-  // ghosts of those planes.
+void Solver::cellLinesAndGhosts(const PlaneSlab* slab, Field& out, Line&& line, CellGhosts ghosts) const {
+  // line(l) for the cell lines of the slab's planes (all: threaded loop), then (CellGhosts::Filled)
+  // the zero-gradient ghosts of those planes.
   const auto lines = static_cast<std::int64_t>(grid_.cells[1]) * grid_.cells[2];
+  const bool fill = ghosts == CellGhosts::Filled;
   if (slab) {
     forLines(lines, slab->lineBegin(grid_.cells), slab->lineEnd(grid_.cells), line);
-    fillCellGhostsPlanes(out, bc_, CellGhostKind::ZeroGradient, slab->ghostPlanes(grid_.cells));
+    if (fill) fillCellGhostsPlanes(out, bc_, CellGhostKind::ZeroGradient, slab->ghostPlanes(grid_.cells));
   } else {
     parallelFor(lines, line);
-    fillCellGhosts(out, bc_, CellGhostKind::ZeroGradient);
+    if (fill) fillCellGhosts(out, bc_, CellGhostKind::ZeroGradient);
   }
 }
 

@@ -38,6 +38,8 @@ struct MomentumRhsPoint;  // fluid/momentum_rhs.hpp
 enum class MomentumModel { A, B };
 enum class ConvectionScheme { Central, VanLeer };
 enum class DrivingMode { None, PressureGradient, FlowRate };
+/// Whether a derived cell field (cellVelocity, pressureGradient) gets its ghost layers filled.
+enum class CellGhosts { Filled, Left };
 
 struct NamedCellField {
   std::string name;
@@ -67,9 +69,14 @@ class Solver {
   void step(double dt);
   /// Largest dt with CFL <= fluid.cfl for the current velocity (max double when at rest).
   double stableTimeStep() const;
-  void cellVelocity(Field out[3]) const;
-  /// Cell-centred grad p, including the mean driving gradient (-drivingPressureGradient()) along the driving axis.
-  void pressureGradient(Field out[3]) const;
+  /// Cell-centred velocity (mean of the two face velocities). CellGhosts::Filled: zero-gradient
+  /// ghosts as well; CellGhosts::Left: interior cells only, the ghosts keep what they held (for
+  /// readers of the interior only, e.g. the coupling's FluidView: six ghost fills per fluid step of
+  /// a 2 x 30 x 90 bed cost as much as the values themselves).
+  void cellVelocity(Field out[3], CellGhosts ghosts = CellGhosts::Filled) const;
+  /// Cell-centred grad p, including the mean driving gradient (-drivingPressureGradient()) along
+  /// the driving axis; ghosts as cellVelocity.
+  void pressureGradient(Field out[3], CellGhosts ghosts = CellGhosts::Filled) const;
   const Field& pressure() const { return p_; }
   void checkHealth(long long step, double time) const;
   void save(BinaryWriter& out) const;
@@ -209,7 +216,7 @@ class Solver {
   void forCellPlanes(TeamTuner& tuner, Body&& body) const;
   /// line(l) on the cell lines of the slab (null: all) and the zero-gradient ghosts of out there.
   template <class Line>
-  void cellLinesAndGhosts(const PlaneSlab* slab, Field& out, Line&& line) const;
+  void cellLinesAndGhosts(const PlaneSlab* slab, Field& out, Line&& line, CellGhosts ghosts) const;
   /// Largest useful thread team for the plane-split phases of a small 3D grid (1: loop by loop).
   int teamSize() const;
   std::vector<double> epsMemberRange_;      // momentum_team.cpp: min and max of eps per team member

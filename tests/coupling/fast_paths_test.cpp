@@ -506,3 +506,53 @@ TEST(FastPaths, MaxRadiusIsTheLargestRadius) {
     }
   }
 }
+
+TEST(FastPaths, FluidViewGhostsAreNeverRead) {
+  // The time loop lends the coupling cell velocity and pressure gradient without ghost fills
+  // (Simulation::fluidView, fluid::CellGhosts::Left): every scheme, interpolation and force must
+  // read interior cells only, at walls and across periodic sides. Ghosts full of NaN give the
+  // bits of ghosts holding finite values.
+  const CartesianGrid g = makeGrid({3, 4, 5}, {0.01, 0.01, 0.01});
+  const dem::ParticleSet base = randomParticles(400, 0.001, 0.002, {-0.001, 0, 0}, {0.031, 0.04, 0.05}, 31);
+  FluidFields clean(g);
+  clean.setVelocity(g, [](const Vec3& x) { return Vec3{std::sin(60 * x.y), 0.3 * x.x + x.z, 1.0 + std::cos(50 * x.x)}; });
+  clean.setPressureGradient(g, [](const Vec3& x) { return Vec3{5.0 * x.y, 10 * x.z, -9810.0 + 100 * x.y}; });
+  FluidFields poisoned = clean;
+  for (int a = 0; a < 3; ++a)
+    for (Field* f : {&poisoned.u[a], &poisoned.gradP[a]})
+      for (int k = -g.ghosts; k < g.cells[2] + g.ghosts; ++k)
+        for (int j = -g.ghosts; j < g.cells[1] + g.ghosts; ++j)
+          for (int i = -g.ghosts; i < g.cells[0] + g.ghosts; ++i) {
+            const bool interior = i >= 0 && i < g.cells[0] && j >= 0 && j < g.cells[1] && k >= 0 && k < g.cells[2];
+            if (!interior) (*f)(i, j, k) = std::nan("");
+          }
+  const std::string forces =
+      "  forces:\n    virtual_mass: true\n    saffman_mei_lift: true\n    magnus_lift: true\n    fluid_torque: true\n";
+  for (const char* scheme : {"pcm", "divided", "kernel", "big_particle"})
+    for (const char* interpolation : {"cell", "trilinear", "stencil"})
+      for (const auto& periodic : kPeriodicities) {
+        std::vector<Vec3> force[2], torque[2];
+        std::vector<double> density[2];
+        int v = 0;
+        for (const FluidFields* fluid : {&clean, &poisoned}) {
+          auto c = makeCoupler(std::string("  drag_law: gidaspow\n  void_fraction: ") + scheme +
+                                   "\n  interpolation: " + interpolation + "\n" + forces,
+                               g, periodic);
+          dem::ParticleSet particles = base;
+          CouplingFields fields(g);
+          c->computeVoidFraction(particles, fields);
+          c->computeParticleForces(fluid->view(1.2, 1.8e-5, 2e-5), fields, particles);
+          c->fillFluidSources(fields);
+          force[v] = particles.externalForce;
+          torque[v] = particles.externalTorque;
+          density[v] = fields.forceDensity[2].data();
+          ++v;
+        }
+        const std::string where = std::string(scheme) + ", " + interpolation + ", periodic x " +
+                                  std::to_string(periodic[0]);
+        for (const Vec3& f : force[1]) ASSERT_TRUE(std::isfinite(f.x + f.y + f.z)) << where;
+        EXPECT_EQ(force[0], force[1]) << where;
+        EXPECT_EQ(torque[0], torque[1]) << where;
+        EXPECT_EQ(density[0], density[1]) << where;
+      }
+}
