@@ -125,6 +125,11 @@ void buildCompressedRows(std::size_t n, std::vector<std::vector<T>>& scratch, st
   }
 }
 
+/// Whether the list build may test its candidates with AVX-512 (default true; a no-op on CPUs
+/// without AVX-512F/VL). The same lists bit for bit either way; tests switch it off to check the
+/// generic form too. Not thread-safe: set it between builds.
+void allowNeighbourAvx512(bool allowed);
+
 /// Linked-cell binning of particle indices (counting sort, deterministic).
 struct CellGrid {
   int dims[3] = {1, 1, 1};

@@ -123,6 +123,38 @@ TEST(DemNeighbourList, BuildCountsTouchingPairsAsCountTouching) {
   setThreadCount(1);
 }
 
+// The AVX-512 candidate test (where the CPU has it) and the generic one build the same lists: row
+// starts, partners and touching counts, periodic along none, some or all axes, on 1 and 2 threads
+// (the touching count runs on teams only), with ranges longer than one vector (a dense random bed
+// of small spheres and a large sphere's long row).
+TEST(DemNeighbourList, Avx512AndGenericCandidateTestsBuildTheSameLists) {
+  for (int threads : {1, 2}) {
+    setThreadCount(threads);
+    for (const std::array<bool, 3> periodic :
+         {std::array<bool, 3>{false, false, false}, std::array<bool, 3>{true, false, true},
+          std::array<bool, 3>{true, true, true}}) {
+      const Domain d = listTestBox(periodic);
+      const PeriodicBox box(d);
+      ParticleSet p = randomParticles(4000, d.max, 13);
+      p.add(4000, 0, 0.003, 2500, {0.006, 0.005, 0.01});
+      NeighbourList lists[2];
+      for (int generic = 0; generic < 2; ++generic) {
+        allowNeighbourAvx512(generic == 0);
+        lists[generic].build(p, box, d.min, d.max, 0.0004, {}, false);
+      }
+      allowNeighbourAvx512(true);
+      const std::string where = "threads " + std::to_string(threads) + ", periodic " +
+                                std::to_string(periodic[0]) + std::to_string(periodic[1]) + std::to_string(periodic[2]);
+      EXPECT_EQ(lists[0].rowStart, lists[1].rowStart) << where;
+      EXPECT_EQ(lists[0].partner, lists[1].partner) << where;
+      EXPECT_EQ(lists[0].touchingStart, lists[1].touchingStart) << where;
+      EXPECT_EQ(listPairs(lists[0], p), bruteForcePairs(p, box, 0.0004)) << where;
+      EXPECT_GT(lists[0].entries(), 10000u) << where;
+    }
+  }
+  setThreadCount(1);
+}
+
 // Morton order: by the interleaved cell bits, ties (particles in one cell) by index; the same
 // order as a comparison sort of (key, index), also for keys of many bits (a tall box of 2^11
 // cells along z).
