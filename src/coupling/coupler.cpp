@@ -376,6 +376,10 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   const int cP = StandardChannels ? 4 : gradPChannel_, cT = StandardChannels ? 7 : divTauChannel_,
             cW = StandardChannels ? -1 : vorticityChannel_;
   const bool planesPerThread = planesPerThread_;
+  // The drag-only exchange reads no other exchanged force: its array stays +0 (sized with zeros,
+  // moved as zeros), the value this pass would store; not writing it saves a store stream of
+  // 24 B per particle and coupling step.
+  const bool keepOther = exchangeLayout() != ExchangeLayout::DragOnly;
   // Fluid torque on the particles: written only when switched on; otherwise the torques stay zero
   // (cleared once, computeParticleForces, on the same switch) and the DEM force loop does not read them.
   const bool torqueOut = w.fluidTorque;
@@ -415,7 +419,6 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       const Vec3 slip = uf - particles.velocity[p];
       dPrimOf[q] = 2.0 * particles.radius[p] * dPrimFactor;
       slipSquared[q] = dot(slip, slip);
-      fluidVelocityAtParticle_[p] = uf;
       slip_[p] = slip;
     }
     squareRoots(slipSquared, slipNorm, count);
@@ -453,7 +456,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
         if (w.fluidTorque) torque = k3 * force::rotationalTorque(mu, dPrim, relOmega);
       }
       beta_[p] = beta;
-      otherExchangedForce_[p] = exchangedOther;
+      if (keepOther) otherExchangedForce_[p] = exchangedOther;
       particles.externalForce[p] = fDrag + exchangedOther + particleOnly;
       if (torqueOut) particles.externalTorque[p] = torque;
       const Vec3 exchanged = fDrag + exchangedOther;
@@ -520,7 +523,7 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
   planesPerThread_ = settings_.interpolation == InterpolationMode::Trilinear && !settings_.fluxVelocity &&
                      !topology_.periodic[2] && rangeThreads > 1 && bufferBytes <= kThreadSamplesBytes;
   packSamples(fluid, fields, planesPerThread_);
-  for (auto* v : {&fluidVelocityAtParticle_, &slip_, &otherExchangedForce_}) v->resize(n);
+  for (auto* v : {&slip_, &otherExchangedForce_}) v->resize(n);
   beta_.resize(n);
   if (w.virtualMass) alignPreviousSlip(particles);
   const bool standard = sampleChannels_ == kStandardChannels && gradPChannel_ == 4 && divTauChannel_ == 7;

@@ -150,9 +150,11 @@ class Coupler {
   double depositedVolume() const { return depositedVolume_; }   // sum (1 - eps) V_c before clipping, m^3
   double clippedVolume() const { return clippedVolume_; }       // volume lost to min_void_fraction, m^3
   const std::vector<double>& dragCoefficients() const { return beta_; }  // beta_p per particle, kg/s
-  /// Interpolated fluid velocity per particle at the last computeParticleForces (particle order of
-  /// that call), m/s; with dragCoefficients() for a semi-implicit DEM update (implicit_drag.hpp).
-  const std::vector<Vec3>& fluidVelocityAtParticles() const { return fluidVelocityAtParticle_; }
+  /// Slip u_f - u_p per particle at the last computeParticleForces (particle order of that call;
+  /// after endSubstepAverage the substeps' mean), m/s: the interpolated fluid velocity at a particle
+  /// is this plus the particle's velocity at that call. With dragCoefficients() for a semi-implicit
+  /// DEM update (implicit_drag.hpp).
+  const std::vector<Vec3>& slipVelocities() const { return slip_; }
 
   /// Coupling-interval criterion for the smallest particle at slip velocity `slip` (seed 000 eq. 5.30).
   CouplingIntervalCheck checkCouplingInterval(double demTimeStep, int demStepsPerFluidStep,
@@ -231,7 +233,9 @@ class Coupler {
   std::vector<std::size_t> ghostTarget_, ghostSource_;  // ghost cell <- interior cell (fillGhosts)
   // per particle, from computeParticleForces
   // (drag force = beta_ slip_, force::drag)
-  std::vector<Vec3> fluidVelocityAtParticle_, slip_, otherExchangedForce_;
+  // otherExchangedForce_ is written only where the exchange reads it (not in the drag-only
+  // layout: there it stays all +0, the value the force pass would write)
+  std::vector<Vec3> slip_, otherExchangedForce_;
   std::vector<double> beta_;
   std::vector<std::int64_t> previousId_;
   std::vector<Vec3> previousSlip_;  // NaN where a particle has no history (virtual mass)

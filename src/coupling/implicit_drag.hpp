@@ -4,7 +4,7 @@
 //   m (v_new - v_old)/dt = F_other + beta_p (u_f - v_new)
 //   =>  v_new = (v_old + dt (F_other + beta_p u_f)/m) / (1 + dt beta_p / m).
 // Unconditionally stable in dt (the explicit update needs dt < 2 m / beta_p = 2 tau_p). For the
-// DEM integrator: Coupler::dragCoefficients() and fluidVelocityAtParticles() give beta_p and u_f;
+// DEM integrator: Coupler::dragCoefficients() and slipVelocities() give beta_p and u_f - v_coupling;
 // F_other is then the particle's force without the drag (externalForce - beta_p (u_f - v_coupling)).
 #include "core/vec3.hpp"
 

@@ -72,9 +72,9 @@ coupling:
   }
   *expected = -packedBedPressureGradient(coupler.dragLaw(), {1.0, 0.01}, 2.0 * r, 0.6, 0.1);
   // fluid velocity at the particle of the first bed cell (i = 10, after the free inlet region) and
-  // at one in the middle of the bed (i = 20), j = 0
-  if (edgeVelocity) *edgeVelocity = coupler.fluidVelocityAtParticles()[0].x;
-  if (bulkVelocity) *bulkVelocity = coupler.fluidVelocityAtParticles()[10].x;
+  // at one in the middle of the bed (i = 20), j = 0: the slip, the bed being at rest
+  if (edgeVelocity) *edgeVelocity = coupler.slipVelocities()[0].x;
+  if (bulkVelocity) *bulkVelocity = coupler.slipVelocities()[10].x;
   const double dx = (25 - 15) * g.spacing.x;
   return (fluid.pressure()(25, 0, 0) - fluid.pressure()(15, 0, 0)) / dx;
 }
