@@ -296,15 +296,15 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
   for (double r : p.radius) maxRadius = std::max(maxRadius, r);
   CellGrid grid;
   grid.build(p.position, boxMin, boxMax, 2.0 * maxRadius + skin);
-  // The spheres in cell order: one array per coordinate for the AVX-512 test, else side by side,
-  // both (with grid.sorted) padded by kFixedCandidates (zeros) for keepCandidates' fixed-length
-  // first loop.
+  // The spheres in cell order: one array per coordinate for the AVX-512 test (masked loads: no
+  // padding), else side by side, padded like grid.sorted by kFixedCandidates (zeros) for
+  // keepCandidates' fixed-length first loop.
   const bool simd = useAvx512();
   std::vector<CellSortedSphere> sphere;
   CellSortedSpheres soa;
   grid.sorted.resize(n + kFixedCandidates, 0);
   if (simd) {
-    for (auto* v : {&soa.x, &soa.y, &soa.z, &soa.r}) v->resize(n + kFixedCandidates, 0.0);
+    for (auto* v : {&soa.x, &soa.y, &soa.z, &soa.r}) v->resize(n);
     parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t s) {
       const std::uint32_t i = grid.sorted[s];
       const Vec3 x = p.position[i];
