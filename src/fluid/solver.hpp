@@ -214,7 +214,8 @@ class Solver {
   /// body(nullptr) once (solver.cpp).
   template <class Body>
   void forCellPlanes(TeamTuner& tuner, Body&& body) const;
-  /// line(l) on the cell lines of the slab (null: all) and the zero-gradient ghosts of out there.
+  /// line(l) on the cell lines of the slab (null: all), then (CellGhosts::Filled) the zero-gradient
+  /// ghosts of out there.
   template <class Line>
   void cellLinesAndGhosts(const PlaneSlab* slab, Field& out, Line&& line, CellGhosts ghosts) const;
   /// Largest useful thread team for the plane-split phases of a small 3D grid (1: loop by loop).

@@ -548,8 +548,9 @@ TEST(FastPaths, FluidViewGhostsAreNeverRead) {
           density[v] = fields.forceDensity[2].data();
           ++v;
         }
-        const std::string where = std::string(scheme) + ", " + interpolation + ", periodic x " +
-                                  std::to_string(periodic[0]);
+        const std::string where = std::string(scheme) + ", " + interpolation + ", periodic " +
+                                  std::to_string(periodic[0]) + std::to_string(periodic[1]) +
+                                  std::to_string(periodic[2]);
         for (const Vec3& f : force[1]) ASSERT_TRUE(std::isfinite(f.x + f.y + f.z)) << where;
         EXPECT_EQ(force[0], force[1]) << where;
         EXPECT_EQ(torque[0], torque[1]) << where;
