@@ -19,9 +19,9 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-#if defined(__x86_64__) && defined(__GNUC__)
+#include "core/cpu_features.hpp"
+#if defined(GF_X86_SIMD)
 #include <immintrin.h>
-#define GF_DEPOSIT_AVX2 1
 #endif
 
 #include <algorithm>
@@ -84,21 +84,14 @@ struct PackedValues {
 
 /// Whether deposits of 4 or more channels may add four channels per operation (depositPieceWide):
 /// the CPU has AVX2 and no test switched it off (allowWideDeposit).
-inline bool& wideDepositAllowed() {
-  static bool allowed = true;
-  return allowed;
+inline VectorForm& wideDeposit() {
+  static VectorForm form(InstructionSet::Avx2);
+  return form;
 }
-inline void allowWideDeposit(bool allowed) { wideDepositAllowed() = allowed; }
-inline bool useWideDeposit() {
-#if defined(GF_DEPOSIT_AVX2)
-  static const bool cpuHasIt = __builtin_cpu_supports("avx2");
-  return cpuHasIt && wideDepositAllowed();
-#else
-  return false;
-#endif
-}
+inline void allowWideDeposit(bool allowed) { wideDeposit().allow(allowed); }
+inline bool useWideDeposit() { return wideDeposit().enabled(); }
 
-#if defined(GF_DEPOSIT_AVX2)
+#if defined(GF_X86_SIMD)
 /// The deposit of particles [begin, end) with four channels per 256-bit operation (then a pair,
 /// then a single channel): per lane the same multiplication and addition as
 /// target[ch] += w * v[ch] (no fused multiply-add: not enabled for this function), the same bits.
@@ -174,7 +167,7 @@ const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_
       const std::size_t* cellOf = s.cell.data();
       const double* weightOf = s.weight.data();
       const auto capacity = static_cast<std::size_t>(s.capacity);
-#if defined(GF_DEPOSIT_AVX2)
+#if defined(GF_X86_SIMD)
       if constexpr (C >= 4) {
         if (wide) {
           depositPieceWide<C>(countOf, cellOf, weightOf, capacity, piece, pieceEnd, sum, values, lowest, highest);

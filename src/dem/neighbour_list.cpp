@@ -3,29 +3,20 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/cpu_features.hpp"
 #include "core/parallel.hpp"
 
-#if defined(__x86_64__) && defined(__GNUC__)
+#if defined(GF_X86_SIMD)
 #include <immintrin.h>
-#define GF_NEIGHBOUR_AVX512 1
 #endif
 
 namespace gf::dem {
 
 namespace {
-// whether the candidate test may use its AVX-512 form (the CPU has it and no test switched it off)
-bool avx512Allowed = true;
-bool useAvx512() {
-#if defined(GF_NEIGHBOUR_AVX512)
-  static const bool cpuHasIt = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl");
-  return cpuHasIt && avx512Allowed;
-#else
-  return false;
-#endif
-}
+VectorForm candidateTestAvx512(InstructionSet::Avx512fVl);  // keepRowAvx512
 }  // namespace
 
-void allowNeighbourAvx512(bool allowed) { avx512Allowed = allowed; }
+void allowNeighbourAvx512(bool allowed) { candidateTestAvx512.allow(allowed); }
 
 int CellGrid::cellIndex(const Vec3& x, int c[3]) const {
   for (int a = 0; a < 3; ++a) {
@@ -181,7 +172,7 @@ struct CellSortedSpheres {
   std::vector<double> x, y, z, r;
 };
 
-#if defined(GF_NEIGHBOUR_AVX512)
+#if defined(GF_X86_SIMD)
 /// keepCandidates for all `ranges` candidate ranges of a row ([first, last) pairs in the cell
 /// order), eight candidates at a time: lane by lane the same differences, minimum images, squared
 /// distances ((dx dx + dy dy) + dz dz, every product and sum rounded as in the scalar form: no FMA),
@@ -299,7 +290,7 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
   // The spheres in cell order: one array per coordinate for the AVX-512 test (masked loads: no
   // padding), else side by side, padded like grid.sorted by kFixedCandidates (zeros) for
   // keepCandidates' fixed-length first loop.
-  const bool simd = useAvx512();
+  const bool simd = candidateTestAvx512.enabled();
   std::vector<CellSortedSphere> sphere;
   CellSortedSpheres soa;
   grid.sorted.resize(n + kFixedCandidates, 0);
@@ -360,7 +351,7 @@ void NeighbourList::build(const ParticleSet& p, const PeriodicBox& box, const Ve
     const auto self = static_cast<std::uint32_t>(i);
     const PeriodicBox localBox = box;  // (the row stores cannot change it: no reloads)
     std::uint32_t touching = 0;
-#if defined(GF_NEIGHBOUR_AVX512)
+#if defined(GF_X86_SIMD)
     if constexpr (Simd) {
       kept = countingTouches ? keepRowAvx512<Periodic, true>(soa, range, ranges, sorted, xi, ri, radius, self, localBox,
                                                              row, touching)

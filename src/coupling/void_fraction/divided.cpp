@@ -12,9 +12,9 @@
 #include <memory>
 #include <stdexcept>
 #include <vector>
-#if defined(__x86_64__) && defined(__GNUC__)
+#include "core/cpu_features.hpp"
+#if defined(GF_X86_SIMD)
 #include <immintrin.h>
-#define GF_DIVIDED_AVX512 1
 #endif
 
 #include "coupling/axis_offsets.hpp"
@@ -142,16 +142,7 @@ inline AxisSplit splitAxis(double x, const double (&ru)[kValues], double origin,
 
 using AxisOffsets = AxisOffsetTable<std::size_t>;
 
-// whether the block path may use its AVX-512 form (the CPU has it and no test switched it off)
-bool avx512Allowed = true;
-bool useAvx512() {
-#if defined(GF_DIVIDED_AVX512)
-  static const bool cpuHasIt = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx2");
-  return cpuHasIt && avx512Allowed;
-#else
-  return false;
-#endif
-}
+VectorForm blockPathAvx512(InstructionSet::Avx512fAvx2);  // addBlocksAvx512
 
 class DividedVoidFraction final : public VoidFractionScheme {
  public:
@@ -198,8 +189,8 @@ class DividedVoidFraction final : public VoidFractionScheme {
                          std::size_t begin, std::size_t end) const override {
     if (stencils.capacity != kBlockCapacity) return;  // general path: built by beginStencils
     const BlockTables& tables = *tables_;
-#if defined(GF_DIVIDED_AVX512)
-    if (useAvx512()) {
+#if defined(GF_X86_SIMD)
+    if (blockPathAvx512.enabled()) {
       addBlocksAvx512(particles, topology, tables, stencils, begin, end);
       return;
     }
@@ -307,7 +298,7 @@ class DividedVoidFraction final : public VoidFractionScheme {
     return counts;
   }
 
-#if defined(GF_DIVIDED_AVX512)
+#if defined(GF_X86_SIMD)
   /// The lower cells and splits (as splitAxis) of the 8 particles from `first` into lane q0..q0+7
   /// of lower/split, one particle per vector lane: per axis and unit coordinate v the same
   /// operations (x + r u_v - origin) * inv as the per-particle form, the floor by rounding down
@@ -453,7 +444,7 @@ class DividedVoidFraction final : public VoidFractionScheme {
 
 }  // namespace
 
-void allowDividedAvx512(bool allowed) { avx512Allowed = allowed; }
+void allowDividedAvx512(bool allowed) { blockPathAvx512.allow(allowed); }
 
 GF_REGISTER_MODEL(VoidFractionScheme, DividedVoidFraction, "divided",
                   "satellite points: volume split into 29 equal parts at the centre and 28 points inside the sphere (CFDEM 'divided')")
