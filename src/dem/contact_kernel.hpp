@@ -98,8 +98,7 @@ inline void splitRowsAmongThreads(const NeighbourList& list, const WallContactLi
 /// when the sweep completes it (half list: the other contributions come from earlier rows of its
 /// own block), so every thread kicks such rows during its sweep; the rows that do receive
 /// (`received[t]`, ascending, from the list at its build: a superset of those touched) get the
-/// buffers added in thread order and their kick after the barrier, by all members (an even share
-/// of the receiving rows each).
+/// buffers added in thread order and their kick after the barrier.
 struct PartnerBuffers {
   std::vector<std::vector<Vec3>> force, torque;
   std::vector<std::uint32_t> lo, hi;  // touched range per thread (particle indices)
@@ -939,23 +938,12 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
     }
     if (team > 1) {
 #pragma omp barrier
-      // The receiving rows of all blocks, in block order, are split evenly among the members:
-      // each adds the partner buffers of the earlier blocks to its share of the rows, in thread
-      // order (entries outside a buffer's touched range hold zero and are left out), and kicks
-      // them. Every row is completed by one member with the same additions as by its own block's
-      // thread (same bits). Until session 29 each block's thread completed its own receivers
-      // while the first thread waited: ~500 rows per step in the bubbling bed, 32 us per step on
-      // the second thread (its partner-buffer reads are transfers from the first core's cache).
-      std::size_t receivers = 0;
-      for (int u = 1; u < team; ++u) receivers += buffers.received[u].size();
-      const std::size_t shareBegin = receivers * t / team, shareEnd = receivers * (t + 1) / team;
-      std::size_t offset = 0;  // position of block u's first receiver in the block order
-      for (int u = 1; u < team && offset < shareEnd; ++u) {
-        const std::vector<std::uint32_t>& rows = buffers.received[u];
-        const std::size_t first = std::max(shareBegin, offset), last = std::min(shareEnd, offset + rows.size());
-        for (std::size_t q = first; q < last; ++q) {
-          const std::uint32_t i = rows[q - offset];
-          for (int s = 0; s < u; ++s) {
+      // Each thread adds the partner buffers of the threads before it to its receiving rows, in
+      // thread order (entries outside a buffer's touched range hold zero and are left out), and
+      // kicks them.
+      if (t > 0)
+        for (const std::uint32_t i : buffers.received[t]) {
+          for (int s = 0; s < t; ++s) {
             if (i < buffers.lo[s] || i >= buffers.hi[s]) continue;
             const std::size_t e = i - buffers.blockEnd(s);
             force[i] += buffers.force[s][e];
@@ -965,8 +953,6 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
           }
           if (halfKick != 0.0) kick(i);
         }
-        offset += rows.size();
-      }
     }
   };
   runTeam(threads, member);  // (a team of one: no region, core/parallel.hpp)
