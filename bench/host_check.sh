@@ -28,16 +28,17 @@ ns_per_step() {
     /^Benchmark/ { for (i = 1; i <= NF; ++i) if ($i == "ns_per_particle_step") column = i - 4 }
     index($0, name) == 1 { value = $(6 + column); sub(/[a-zA-Z]+$/, "", value); print value }'
 }
+both0=$(mktemp)  # the CPU-0 figure of the concurrent pair
+trap 'rm -f "$both0"' EXIT
 printf '%-18s %8s %8s %13s %13s %15s %8s\n' "ns/particle-step" "alone0" "alone1" "together0" "together1" "together/alone" ceiling
 for bench in BM_DemFreeFlight BM_DemSettledBed; do
   a0=$(ns_per_step "$bench" 0)
   a1=$(ns_per_step "$bench" 1)
-  ns_per_step "$bench" 0 >/tmp/host_check_both0.$$ &
+  ns_per_step "$bench" 0 >"$both0" &
   pid=$!
   b1=$(ns_per_step "$bench" 1)
   wait "$pid"
-  b0=$(cat /tmp/host_check_both0.$$)
-  rm -f /tmp/host_check_both0.$$
+  b0=$(cat "$both0")
   read -r ratio ceiling < <(python3 -c "print(f'{($b0 + $b1) / ($a0 + $a1):.2f} {($a0 + $a1) / max($b0, $b1):.2f}')")
   printf '%-18s %8.1f %8.1f %13.1f %13.1f %15s %8s\n' "$bench" "$a0" "$a1" "$b0" "$b1" "$ratio" "$ceiling"
 done
