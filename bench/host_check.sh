@@ -15,6 +15,8 @@
 # Also compare the "alone" figures with the README's (settled bed ~45 ns and free flight ~6 ns on
 # a good host): a slow host moves the one-thread targets too.
 #   bash bench/host_check.sh          (needs build/grainflow; about 1 minute)
+# Last line: the cost of one barrier of a 2-thread team (gf::TeamBarrier; the pressure solve takes
+# ~13 per CG iteration) and how many CPUs the team ran on.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 exe=${GRAINFLOW:-$here/build/grainflow}
@@ -42,3 +44,8 @@ for bench in BM_DemFreeFlight BM_DemSettledBed; do
   read -r ratio ceiling < <(python3 -c "print(f'{($b0 + $b1) / ($a0 + $a1):.2f} {($a0 + $a1) / max($b0, $b1):.2f}')")
   printf '%-18s %8.1f %8.1f %13.1f %13.1f %15s %8s\n' "$bench" "$a0" "$a1" "$b0" "$b1" "$ratio" "$ceiling"
 done
+# A team of two threads (unpinned, as a run): ns per gf::TeamBarrier round, and the CPUs it ran on
+# (team_cpus 1: both threads on one CPU, no two-thread figure means anything).
+"$exe" bench 'BM_TeamBarrier/' --threads 2 2>/dev/null | awk '
+  /^Benchmark/ { for (i = 1; i <= NF; ++i) { if ($i == "ns_per_barrier") nb = i + 2; if ($i == "team_cpus") tc = i + 2 } }
+  /^BM_TeamBarrier/ { v = $nb; sub(/[a-zA-Z]+$/, "", v); printf "team of 2: %.2f us per barrier round, on %d CPU(s)\n", v / 1000, $tc }'
