@@ -14,53 +14,69 @@ namespace gf::io {
 namespace {
 constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 
-/// VTK "binary" inline encoding: base64(UInt64 byte count + raw little-endian data).
-template <class T>
-std::string encodeArray(const std::vector<T>& values) {
-  const std::uint64_t bytes = values.size() * sizeof(T);
-  std::vector<unsigned char> raw(sizeof(bytes) + bytes);
-  std::memcpy(raw.data(), &bytes, sizeof(bytes));
-  if (bytes) std::memcpy(raw.data() + sizeof(bytes), values.data(), bytes);
-  return base64Encode(raw.data(), raw.size());
+/// Appends the base64 (RFC 4648) of the byte stream `first` (nFirst bytes) then `second`
+/// (nSecond bytes) to out, written in place: the output is sized once and filled through a
+/// pointer, 4 characters per 3 bytes (appending character by character, with a copy of the whole
+/// array and of the encoded text per DataArray, took 1.8 us per particle for a .vtu file).
+void appendBase64(std::string& out, const unsigned char* first, std::size_t nFirst, const unsigned char* second,
+                  std::size_t nSecond) {
+  const std::size_t total = nFirst + nSecond;
+  const std::size_t start = out.size();
+  out.resize(start + (total + 2) / 3 * 4);
+  char* o = out.data() + start;
+  auto emit = [&o](std::uint32_t v) {  // 24 bits -> 4 characters
+    o[0] = kAlphabet[(v >> 18) & 63];
+    o[1] = kAlphabet[(v >> 12) & 63];
+    o[2] = kAlphabet[(v >> 6) & 63];
+    o[3] = kAlphabet[v & 63];
+    o += 4;
+  };
+  auto byteAt = [&](std::size_t k) -> std::uint32_t { return k < nFirst ? first[k] : second[k - nFirst]; };
+  std::size_t k = 0;
+  // triples that start in `first` (they may straddle into `second`), byte by byte
+  for (; k < nFirst && k + 2 < total; k += 3) emit(byteAt(k) << 16 | byteAt(k + 1) << 8 | byteAt(k + 2));
+  // whole triples of `second`
+  if (k >= nFirst)
+    for (const unsigned char* in = second + (k - nFirst); k + 2 < total; k += 3, in += 3)
+      emit(static_cast<std::uint32_t>(in[0]) << 16 | static_cast<std::uint32_t>(in[1]) << 8 | in[2]);
+  if (k < total) {  // 1 or 2 bytes left: padded
+    std::uint32_t v = byteAt(k) << 16;
+    if (k + 1 < total) v |= byteAt(k + 1) << 8;
+    emit(v);
+    o[-1] = '=';
+    if (k + 1 >= total) o[-2] = '=';
+  }
+}
+
+/// One DataArray in VTK "binary" inline encoding: base64(UInt64 byte count + raw little-endian
+/// data), encoded straight from the caller's array.
+void appendDataArray(std::string& out, const char* type, const std::string& name, int components, const void* data,
+                     std::size_t bytes) {
+  out += fmt::format("        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"binary\">\n", type,
+                     name, components);
+  const std::uint64_t count = bytes;
+  unsigned char header[sizeof(count)];
+  std::memcpy(header, &count, sizeof(count));
+  appendBase64(out, header, sizeof(header), static_cast<const unsigned char*>(data), bytes);
+  out += "\n        </DataArray>\n";
 }
 
 void appendDataArray(std::string& out, const VtkArray& a) {
   if (a.isInteger)
-    out += fmt::format("        <DataArray type=\"Int64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"binary\">\n{}\n        </DataArray>\n",
-                       a.name, a.components, encodeArray(a.integer));
+    appendDataArray(out, "Int64", a.name, a.components, a.integer.data(), a.integer.size() * sizeof(std::int64_t));
   else
-    out += fmt::format("        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"binary\">\n{}\n        </DataArray>\n",
-                       a.name, a.components, encodeArray(a.real));
+    appendDataArray(out, "Float64", a.name, a.components, a.real.data(), a.real.size() * sizeof(double));
 }
 
-VtkArray vectorArray(const std::string& name, const std::vector<Vec3>& v) {
-  VtkArray a{name, 3, {}, {}, false};
-  a.real.reserve(3 * v.size());
-  for (const Vec3& x : v) a.real.insert(a.real.end(), {x.x, x.y, x.z});
-  return a;
+static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 arrays are written as 3-component Float64 arrays");
+void appendVectors(std::string& out, const std::string& name, const std::vector<Vec3>& v) {
+  appendDataArray(out, "Float64", name, 3, v.data(), v.size() * sizeof(Vec3));
 }
 }  // namespace
 
 std::string base64Encode(const void* data, std::size_t size) {
-  const auto* in = static_cast<const unsigned char*>(data);
   std::string out;
-  out.reserve((size + 2) / 3 * 4);
-  std::size_t i = 0;
-  for (; i + 2 < size; i += 3) {
-    const std::uint32_t v = (in[i] << 16) | (in[i + 1] << 8) | in[i + 2];
-    out += kAlphabet[(v >> 18) & 63];
-    out += kAlphabet[(v >> 12) & 63];
-    out += kAlphabet[(v >> 6) & 63];
-    out += kAlphabet[v & 63];
-  }
-  if (i < size) {
-    std::uint32_t v = in[i] << 16;
-    if (i + 1 < size) v |= in[i + 1] << 8;
-    out += kAlphabet[(v >> 18) & 63];
-    out += kAlphabet[(v >> 12) & 63];
-    out += (i + 1 < size) ? kAlphabet[(v >> 6) & 63] : '=';
-    out += '=';
-  }
+  appendBase64(out, nullptr, 0, static_cast<const unsigned char*>(data), size);
   return out;
 }
 
@@ -87,37 +103,35 @@ std::vector<unsigned char> base64Decode(const std::string& text) {
 
 std::string particlesVtu(const dem::ParticleSet& p) {
   const std::size_t n = p.size();
-  std::vector<double> points;
-  points.reserve(3 * n);
-  for (const Vec3& x : p.position) points.insert(points.end(), {x.x, x.y, x.z});
   std::vector<std::int64_t> connectivity(n), offsets(n);
-  std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
+  const std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
   for (std::size_t i = 0; i < n; ++i) {
     connectivity[i] = static_cast<std::int64_t>(i);
     offsets[i] = static_cast<std::int64_t>(i + 1);
   }
+  const std::vector<std::int64_t> type(p.type.begin(), p.type.end());
   std::string out;
+  // (about 180 characters per particle)
+  out.reserve(200 * n + 4096);
   out += "<?xml version=\"1.0\"?>\n";
   out += "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
   out += "  <UnstructuredGrid>\n";
   out += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", n, n);
   out += "      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n";
-  std::vector<std::int64_t> type(p.type.begin(), p.type.end());
-  appendDataArray(out, {"id", 1, {}, p.id, true});
-  appendDataArray(out, {"type", 1, {}, type, true});
-  appendDataArray(out, {"radius", 1, p.radius, {}, false});
-  appendDataArray(out, vectorArray("velocity", p.velocity));
-  appendDataArray(out, vectorArray("angular_velocity", p.angularVelocity));
-  appendDataArray(out, vectorArray("force", p.force));
+  appendDataArray(out, "Int64", "id", 1, p.id.data(), n * sizeof(std::int64_t));
+  appendDataArray(out, "Int64", "type", 1, type.data(), n * sizeof(std::int64_t));
+  appendDataArray(out, "Float64", "radius", 1, p.radius.data(), n * sizeof(double));
+  appendVectors(out, "velocity", p.velocity);
+  appendVectors(out, "angular_velocity", p.angularVelocity);
+  appendVectors(out, "force", p.force);
   out += "      </PointData>\n";
   out += "      <Points>\n";
-  appendDataArray(out, {"Points", 3, points, {}, false});
+  appendVectors(out, "Points", p.position);
   out += "      </Points>\n";
   out += "      <Cells>\n";
-  appendDataArray(out, {"connectivity", 1, {}, connectivity, true});
-  appendDataArray(out, {"offsets", 1, {}, offsets, true});
-  out += fmt::format("        <DataArray type=\"UInt8\" Name=\"types\" format=\"binary\">\n{}\n        </DataArray>\n",
-                     encodeArray(types));
+  appendDataArray(out, "Int64", "connectivity", 1, connectivity.data(), n * sizeof(std::int64_t));
+  appendDataArray(out, "Int64", "offsets", 1, offsets.data(), n * sizeof(std::int64_t));
+  appendDataArray(out, "UInt8", "types", 1, types.data(), n);
   out += "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
   return out;
 }
