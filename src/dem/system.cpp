@@ -383,18 +383,31 @@ TimeStepStatus System::checkTimeStep(double dt) const { return dem::checkTimeSte
 
 void System::checkHealth(long long step, double time) const {
   const ParticleSet& p = particles_;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    if (!isFinite(p.position[i]) || !isFinite(p.velocity[i]) || !isFinite(p.angularVelocity[i]))
-      throw DivergenceError(step, time, "particle position/velocity is NaN or Inf",
-                            fmt::format("particle id {}", p.id[i]), p.position[i], "reduce the time step");
-    const Vec3 x = p.position[i];
-    bool inside = true;
+  auto healthy = [&](std::size_t i) {
+    if (!isFinite(p.position[i]) || !isFinite(p.velocity[i]) || !isFinite(p.angularVelocity[i])) return false;
     for (int a = 0; a < 3; ++a)
-      if (!domain_.periodic[a] && (x[a] < domain_.min[a] || x[a] > domain_.max[a])) inside = false;
-    if (!inside)
-      throw DivergenceError(step, time, "particle left the domain", fmt::format("particle id {}", p.id[i]), x,
-                            "no wall or outlet holds it; check walls, outlets and the time step");
+      if (!domain_.periodic[a] && (p.position[i][a] < domain_.min[a] || p.position[i][a] > domain_.max[a])) return false;
+    return true;
+  };
+  // The first unhealthy particle (lowest index: the same report on any thread count), found by
+  // the team (a pass over all particles, on the main thread's path between DEM steps otherwise).
+  const auto n = static_cast<std::int64_t>(p.size());
+  std::int64_t first = n;
+  if (runsOnCallingThread(n)) {
+    for (std::int64_t i = 0; i < n && first == n; ++i)
+      if (!healthy(static_cast<std::size_t>(i))) first = i;
+  } else {
+#pragma omp parallel for schedule(static) reduction(min : first)
+    for (std::int64_t i = 0; i < n; ++i)
+      if (i < first && !healthy(static_cast<std::size_t>(i))) first = i;
   }
+  if (first == n) return;
+  const auto i = static_cast<std::size_t>(first);
+  if (!isFinite(p.position[i]) || !isFinite(p.velocity[i]) || !isFinite(p.angularVelocity[i]))
+    throw DivergenceError(step, time, "particle position/velocity is NaN or Inf", fmt::format("particle id {}", p.id[i]),
+                          p.position[i], "reduce the time step");
+  throw DivergenceError(step, time, "particle left the domain", fmt::format("particle id {}", p.id[i]), p.position[i],
+                        "no wall or outlet holds it; check walls, outlets and the time step");
 }
 
 std::vector<WallLoad> System::wallLoads() const {

@@ -1,6 +1,8 @@
 // Neighbour search, contact history across rebuilds/reordering, determinism, restarts, energy.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -513,6 +515,40 @@ TEST(DemSystem, HealthCheckNamesParticle) {
   } catch (const DivergenceError& e) {
     EXPECT_NE(std::string(e.what()).find("42"), std::string::npos);
   }
+}
+
+TEST(DemSystem, HealthCheckReportsTheFirstUnhealthyParticleOnAnyThreadCount) {
+  // 2,000 particles (a team scans them on several threads): the lowest index is reported, the
+  // domain exit of index 700 before the NaN of index 1500, then the NaN once 700 is back inside.
+  DemCase c(materialsYaml("hertz_mindlin", 0.5, 0.5) + "domain: {min: [0, 0, 0], max: [1, 1, 1]}\n", {0, 0, 0});
+  ParticleSet& p = c->particles();
+  for (int i = 0; i < 2000; ++i) p.add(1000 + i, 0, 0.001, 2500, {0.1 + 0.0004 * i, 0.5, 0.5});
+  p.velocity[1500].z = std::numeric_limits<double>::quiet_NaN();
+  p.position[700].x = 1.5;
+  const int threadsBefore = threadCount();
+  auto report = [&] {
+    try {
+      c->checkHealth(7, 0.1);
+    } catch (const DivergenceError& e) {
+      return std::string(e.what());
+    }
+    return std::string("healthy");
+  };
+  for (int threads : {1, 2, 3}) {
+    setThreadCount(threads);
+    const std::string outside = report();
+    EXPECT_NE(outside.find("left the domain"), std::string::npos) << outside;
+    EXPECT_NE(outside.find("particle id 1700"), std::string::npos) << outside;
+    p.position[700].x = 0.5;
+    const std::string nan = report();
+    EXPECT_NE(nan.find("NaN"), std::string::npos) << nan;
+    EXPECT_NE(nan.find("particle id 2500"), std::string::npos) << nan;
+    p.velocity[1500].z = 0.0;
+    EXPECT_EQ(report(), "healthy");
+    p.velocity[1500].z = std::numeric_limits<double>::quiet_NaN();
+    p.position[700].x = 1.5;
+  }
+  setThreadCount(threadsBefore);
 }
 
 }  // namespace
