@@ -347,13 +347,27 @@ void Coupler::scaleToFluxVelocity(const Field& eps) {
   }
 }
 
+bool Coupler::previousIdsMatch(const dem::ParticleSet& particles) {
+  if (previousStamp_ != 0 && previousStamp_ == particles.layoutStamp && previousId_.size() == particles.size())
+    return true;
+  if (particles.id != previousId_) return false;
+  previousStamp_ = particles.layoutStamp;
+  return true;
+}
+
+void Coupler::keepIds(const dem::ParticleSet& particles) {
+  if (previousStamp_ != 0 && previousStamp_ == particles.layoutStamp && previousId_.size() == particles.size()) return;
+  previousId_ = particles.id;
+  previousStamp_ = particles.layoutStamp;
+}
+
 void Coupler::alignPreviousSlip(const dem::ParticleSet& particles) {
   // slip of each current particle at the previous coupling step (matched by id); a particle
   // without history gets NaN, read as "its current slip", i.e. no virtual-mass force in its first step
-  if (particles.id == previousId_) return;
+  if (previousIdsMatch(particles)) return;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   moveToCurrentOrder(previousSlip_, previousIndexById(previousId_, particles.id), Vec3{nan, nan, nan});
-  previousId_ = particles.id;
+  keepIds(particles);
 }
 
 template <InterpolationMode Mode, bool StandardChannels, class Law>
@@ -537,7 +551,7 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
       case InterpolationMode::Stencil: forcePass<InterpolationMode::Stencil, false>(fluid, law, particles); break;
     }
   });
-  previousId_ = particles.id;
+  keepIds(particles);
   keepSlipAsPrevious();
   forcesReady_ = true;
   exchangePending_ = true;
@@ -597,12 +611,12 @@ void Coupler::endSubstepAverage(const dem::ParticleSet& particles) {
     slip_[p] = beta > 0.0 ? (1.0 / beta) * drag : Vec3{};
     otherExchangedForce_[p] = inverse * otherSum_[p];
   });
-  previousId_ = particles.id;
+  keepIds(particles);
   particleForceSumsValid_ = false;  // the balance sums the means
 }
 
 void Coupler::realignToParticles(const dem::ParticleSet& particles) {
-  if (particles.id == previousId_) return;
+  if (previousIdsMatch(particles)) return;
   // The DEM reordered (or inserted / removed) particles since computeParticleForces: move the
   // per-particle exchange data to the new order by id; new particles exchange nothing.
   const std::vector<std::size_t> from = previousIndexById(previousId_, particles.id);
@@ -611,7 +625,7 @@ void Coupler::realignToParticles(const dem::ParticleSet& particles) {
   moveToCurrentOrder(beta_, from, 0.0);
   particleForceSumsValid_ = false;  // particles gone or new: sum the realigned forces
   keepSlipAsPrevious();
-  previousId_ = particles.id;
+  keepIds(particles);
 }
 
 void Coupler::fillFluidSources(const dem::ParticleSet& particles, CouplingFields& fields) {
@@ -835,6 +849,7 @@ void Coupler::save(BinaryWriter& out) const {
 
 void Coupler::load(BinaryReader& in) {
   previousId_ = in.getVector<std::int64_t>();
+  previousStamp_ = 0;  // (compared in full once)
   previousSlip_ = in.getVector<Vec3>();
   previousSlipIsSlip_ = false;
   if (previousId_.size() != previousSlip_.size())

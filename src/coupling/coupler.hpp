@@ -238,6 +238,12 @@ class Coupler {
   std::vector<Vec3> slip_, otherExchangedForce_;
   std::vector<double> beta_;
   std::vector<std::int64_t> previousId_;
+  std::uint64_t previousStamp_ = 0;  // layoutStamp of the set previousId_ was taken from (0: none)
+  /// Whether previousId_ holds the ids of `particles`, in order: the same layout stamp, else a
+  /// full comparison (which then records the stamp).
+  bool previousIdsMatch(const dem::ParticleSet& particles);
+  /// previousId_ = the ids of `particles` (no copy while the stamp is the same).
+  void keepIds(const dem::ParticleSet& particles);
   std::vector<Vec3> previousSlip_;  // NaN where a particle has no history (virtual mass)
   bool previousSlipIsSlip_ = false;  // previousSlip_ is slip_ (not copied without virtual mass)
   double particleVolume_ = 0.0, depositedVolume_ = 0.0, clippedVolume_ = 0.0;

@@ -1,14 +1,21 @@
 #include "dem/particles.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <numbers>
 
 #include "core/parallel.hpp"
 
 namespace gf::dem {
 
+std::uint64_t ParticleSet::nextLayoutStamp() {
+  static std::atomic<std::uint64_t> counter{0};
+  return counter.fetch_add(1, std::memory_order_relaxed) + 1;
+}
+
 std::size_t ParticleSet::add(std::int64_t newId, std::int32_t materialType, double r, double density, const Vec3& x,
                              const Vec3& v, const Vec3& omega) {
+  touchLayout();
   id.push_back(newId);
   type.push_back(materialType);
   radius.push_back(r);
@@ -64,6 +71,7 @@ void gatherArray(std::vector<T>& a, const std::vector<std::uint32_t>& order) {
 }  // namespace
 
 void ParticleSet::gather(const std::vector<std::uint32_t>& order) {
+  touchLayout();
   gatherArray(id, order);
   gatherArray(type, order);
   gatherArray(radius, order);
@@ -94,6 +102,7 @@ void ParticleSet::save(BinaryWriter& out) const {
 }
 
 void ParticleSet::load(BinaryReader& in) {
+  touchLayout();
   id = in.getVector<std::int64_t>();
   type = in.getVector<std::int32_t>();
   radius = in.getVector<double>();
