@@ -54,3 +54,19 @@ TEST(CpuFeatures, VectorFormFollowsTheCpuAndTheSwitch) {
     EXPECT_EQ(form.enabled(), gf::cpuHas(set));
   }
 }
+
+// PREFETCHW is reported as the kernel's "3dnowprefetch" flag (CPUID 0x80000001 ECX bit 8); the
+// request itself changes no memory (a line of a live array is still read back unchanged).
+TEST(CpuFeatures, PrefetchForWriteMatchesTheKernelsFlagAndChangesNothing) {
+#if defined(GF_X86_SIMD)
+  const std::set<std::string> flags = procCpuFlags();
+  if (!flags.empty()) EXPECT_EQ(gf::cpuHasPrefetchW(), flags.count("3dnowprefetch") > 0);
+#else
+  EXPECT_FALSE(gf::cpuHasPrefetchW());
+#endif
+  double values[16];
+  for (int i = 0; i < 16; ++i) values[i] = 0.5 * i;
+  if (gf::cpuHasPrefetchW())
+    for (int i = 0; i < 16; i += 8) gf::prefetchForWrite(values + i);
+  for (int i = 0; i < 16; ++i) EXPECT_EQ(values[i], 0.5 * i);
+}
