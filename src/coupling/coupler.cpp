@@ -347,16 +347,19 @@ void Coupler::scaleToFluxVelocity(const Field& eps) {
   }
 }
 
+bool Coupler::previousStampMatches(const dem::ParticleSet& particles) const {
+  return previousStamp_ != 0 && previousStamp_ == particles.layoutStamp && previousId_.size() == particles.size();
+}
+
 bool Coupler::previousIdsMatch(const dem::ParticleSet& particles) {
-  if (previousStamp_ != 0 && previousStamp_ == particles.layoutStamp && previousId_.size() == particles.size())
-    return true;
+  if (previousStampMatches(particles)) return true;
   if (particles.id != previousId_) return false;
   previousStamp_ = particles.layoutStamp;
   return true;
 }
 
 void Coupler::keepIds(const dem::ParticleSet& particles) {
-  if (previousStamp_ != 0 && previousStamp_ == particles.layoutStamp && previousId_.size() == particles.size()) return;
+  if (previousStampMatches(particles)) return;
   previousId_ = particles.id;
   previousStamp_ = particles.layoutStamp;
 }

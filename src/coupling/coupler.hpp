@@ -239,6 +239,8 @@ class Coupler {
   std::vector<double> beta_;
   std::vector<std::int64_t> previousId_;
   std::uint64_t previousStamp_ = 0;  // layoutStamp of the set previousId_ was taken from (0: none)
+  /// previousId_ was taken from this set as it is now (its layout stamp unchanged).
+  bool previousStampMatches(const dem::ParticleSet& particles) const;
   /// Whether previousId_ holds the ids of `particles`, in order: the same layout stamp, else a
   /// full comparison (which then records the stamp).
   bool previousIdsMatch(const dem::ParticleSet& particles);

@@ -404,11 +404,12 @@ TimeStepStatus System::checkTimeStep(double dt) const { return dem::checkTimeSte
 
 void System::checkHealth(long long step, double time) const {
   const ParticleSet& p = particles_;
-  auto healthy = [&](std::size_t i) {
-    if (!isFinite(p.position[i]) || !isFinite(p.velocity[i]) || !isFinite(p.angularVelocity[i])) return false;
+  enum Problem : int { None, NotFinite, Outside };
+  auto problemOf = [&](std::size_t i) {
+    if (!isFinite(p.position[i]) || !isFinite(p.velocity[i]) || !isFinite(p.angularVelocity[i])) return NotFinite;
     for (int a = 0; a < 3; ++a)
-      if (!domain_.periodic[a] && (p.position[i][a] < domain_.min[a] || p.position[i][a] > domain_.max[a])) return false;
-    return true;
+      if (!domain_.periodic[a] && (p.position[i][a] < domain_.min[a] || p.position[i][a] > domain_.max[a])) return Outside;
+    return None;
   };
   // The first unhealthy particle (lowest index: the same report on any thread count), found by
   // the team (a pass over all particles, on the main thread's path between DEM steps otherwise).
@@ -416,15 +417,15 @@ void System::checkHealth(long long step, double time) const {
   std::int64_t first = n;
   if (runsOnCallingThread(n)) {
     for (std::int64_t i = 0; i < n && first == n; ++i)
-      if (!healthy(static_cast<std::size_t>(i))) first = i;
+      if (problemOf(static_cast<std::size_t>(i)) != None) first = i;
   } else {
 #pragma omp parallel for schedule(static) reduction(min : first)
     for (std::int64_t i = 0; i < n; ++i)
-      if (i < first && !healthy(static_cast<std::size_t>(i))) first = i;
+      if (i < first && problemOf(static_cast<std::size_t>(i)) != None) first = i;
   }
   if (first == n) return;
   const auto i = static_cast<std::size_t>(first);
-  if (!isFinite(p.position[i]) || !isFinite(p.velocity[i]) || !isFinite(p.angularVelocity[i]))
+  if (problemOf(i) == NotFinite)
     throw DivergenceError(step, time, "particle position/velocity is NaN or Inf", fmt::format("particle id {}", p.id[i]),
                           p.position[i], "reduce the time step");
   throw DivergenceError(step, time, "particle left the domain", fmt::format("particle id {}", p.id[i]), p.position[i],
