@@ -2,10 +2,11 @@
 // Force loops over the neighbour list and the wall contact list, compiled per contact-model
 // combination (dispatchLaws picks one instantiation per call, before the loop).
 //
-// Determinism: rows are split into one contiguous block per thread (by the listed work, from the
-// lists and the positions at their build: BlockSplit). A thread writes
-// forces of its own block directly; forces on partners in a later block go to the thread's own
-// buffer, added afterwards in thread order. No atomics; bit-identical for a thread count.
+// Determinism: rows are split into one contiguous block per thread (BlockSplit: by the listed
+// work, weighted by each thread's measured speed). A thread writes the forces of its own block
+// directly, except those of the rows that receive contributions from earlier blocks: those
+// contributions, and its own to those rows, are logged in sweep order and added after the barrier
+// in the one-thread order (PartnerBuffers). No atomics; the same bits on any split and thread count.
 #include <omp.h>
 
 #include <algorithm>
@@ -57,57 +58,107 @@ void dispatchLaws(NormalLaw n, RollingLaw r, CohesionLaw c, F&& f) {
 /// merge while the first one waited.)
 struct BlockSplit {
   static constexpr double kRowCost = 1.0, kTouchingCost = 2.5, kWallCost = 1.0, kKickCost = 1.5;
+  /// weight (optional, one per thread): block t gets the share weight[t] / sum of the cost
+  /// (PartnerBuffers::speed: the measured relative speed of each thread); equal shares without.
+  /// blockCost (optional): the modelled cost of each block.
   static void compute(const std::uint32_t* rowStart, const std::uint32_t* touchingStart,
-                      const std::uint32_t* wallRowStart, std::size_t n, int team, std::vector<std::size_t>& start) {
+                      const std::uint32_t* wallRowStart, std::size_t n, int team, std::vector<std::size_t>& start,
+                      const double* weight = nullptr, std::vector<double>* blockCost = nullptr) {
     start.assign(static_cast<std::size_t>(team) + 1, 0);
     start[team] = n;
-    if (team <= 1 || n == 0) return;
     // cumulative cost of rows [0, i)
     auto cost = [&](std::size_t i) {
       return (kRowCost + kKickCost) * static_cast<double>(i) + static_cast<double>(rowStart[i]) +
              (touchingStart ? kTouchingCost * static_cast<double>(touchingStart[i]) : 0.0) +
              (wallRowStart ? kWallCost * static_cast<double>(wallRowStart[i]) : 0.0);
     };
-    auto firstRow = [&](auto&& reached) {  // first row where `reached` holds (it is monotone)
-      std::size_t lo = 0, hi = n;
-      while (lo < hi) {
-        const std::size_t mid = lo + (hi - lo) / 2;
-        if (reached(mid)) hi = mid;
-        else lo = mid + 1;
+    if (team > 1 && n > 0) {
+      auto firstRow = [&](auto&& reached) {  // first row where `reached` holds (it is monotone)
+        std::size_t lo = 0, hi = n;
+        while (lo < hi) {
+          const std::size_t mid = lo + (hi - lo) / 2;
+          if (reached(mid)) hi = mid;
+          else lo = mid + 1;
+        }
+        return lo;
+      };
+      double weightSum = 0.0;
+      for (int t = 0; t < team; ++t) weightSum += weight ? weight[t] : 1.0;
+      const double total = cost(n);
+      double before = 0.0;  // weights of the blocks before t
+      for (int t = 1; t < team; ++t) {
+        before += weight ? weight[t - 1] : 1.0;
+        const double target = weight ? total * (before / weightSum) : t * (total / team);
+        start[t] = std::max(start[t - 1], firstRow([&](std::size_t i) { return cost(i) >= target; }));
       }
-      return lo;
-    };
-    const double share = cost(n) / static_cast<double>(team);
-    for (int t = 1; t < team; ++t)
-      start[t] = std::max(start[t - 1], firstRow([&](std::size_t i) { return cost(i) >= t * share; }));
+    }
+    if (blockCost) {
+      blockCost->resize(static_cast<std::size_t>(team));
+      for (int t = 0; t < team; ++t) (*blockCost)[t] = n > 0 ? cost(start[t + 1]) - cost(start[t]) : 0.0;
+    }
   }
 };
 
-/// BlockSplit of the rows of `list` (and of the wall entries, with walls) for a team: the split
-/// the force loop uses (a function of the lists).
+/// BlockSplit of the rows of `list` (and of the wall entries, with walls) for a team, equal shares:
+/// a function of the lists (System::threadBlocks). The force loop's split starts from it and then
+/// follows the threads' measured speeds (PartnerBuffers::speed).
 inline void splitRowsAmongThreads(const NeighbourList& list, const WallContactList& wallList, bool withWalls,
                                   std::size_t n, int team, std::vector<std::size_t>& start) {
   BlockSplit::compute(list.rowStart.data(), list.touchingStart.size() == n + 1 ? list.touchingStart.data() : nullptr,
                       withWalls ? wallList.rowStart.data() : nullptr, n, team, start);
 }
 
-/// Per-thread partner force buffers (threads 0..T-2) and the blocks of rows. Thread t's rows end
-/// at end_t = blockStart[t + 1] and only partners j >= end_t go to its buffer, so it holds indices
-/// [end_t, n) (entry j - end_t). The buffers are all zero between force evaluations.
+/// One contribution to a particle's force and torque, kept in sweep order (PartnerBuffers).
+struct LoggedContribution {
+  Vec3 force, torque;  // added to the particle's force and torque
+  std::uint32_t particle;
+};
+
+/// What the threads of the contact sweep exchange, and the split of the rows among them.
 ///
-/// A row whose particle is a partner in no earlier block (receives[i] == 0) has its final force
-/// when the sweep completes it (half list: the other contributions come from earlier rows of its
-/// own block), so every thread kicks such rows during its sweep; the rows that do receive
-/// (`received[t]`, ascending, from the list at its build: a superset of those touched) get the
-/// buffers added in thread order and their kick after the barrier.
+/// Summation order, the same on any split and any thread count: a particle's force is its body
+/// force, plus the contributions of the rows before it in row order (half list: partners j > i),
+/// plus its own row's sum, plus its wall contacts, added one at a time, exactly as one thread adds
+/// them. A thread writes the forces of the rows of its block (block t: [blockStart[t],
+/// blockStart[t + 1])) directly, except for its rows that receive contributions from earlier
+/// blocks (`receives`, from the list at its build: a superset of those touched): for those it
+/// logs its own contributions in sweep order (`deferred[t]`), and it logs its contributions to
+/// rows of later blocks (`outgoing[t]`). After the barrier, thread t starts each of its receiving
+/// rows from the body force its sweep set, adds the outgoing logs of the blocks before it (block
+/// by block, each in sweep order, that is in row order), then its own deferred log, and kicks
+/// them. So the DEM trajectory does not depend on the split: the split can follow the measured
+/// speed of each thread (`speed`) without breaking reproducibility.
+///
+/// A row that receives nothing from earlier blocks has its final force when its block's sweep
+/// completes it, and is kicked there.
 struct PartnerBuffers {
-  std::vector<std::vector<Vec3>> force, torque;
-  std::vector<std::uint32_t> lo, hi;  // touched range per thread (particle indices)
+  std::vector<std::vector<LoggedContribution>> outgoing;  // per thread: to rows of later blocks
+  std::vector<std::vector<LoggedContribution>> deferred;  // per thread: to its own receiving rows
   std::vector<std::size_t> blockStart;
   std::vector<std::uint8_t> receives;                // per particle: listed by a row of an earlier block
   std::vector<std::vector<std::uint32_t>> received;  // per thread: its rows that receive
   std::uint64_t receiversOfList = ~std::uint64_t{0};  // NeighbourList::version they were found for
   std::vector<std::size_t> receiversOfBlocks;         // and blockStart
+
+  // Split following the threads' measured speed (only the speed depends on it).
+  /// Relative speed of each thread of the team (mean 1): block t gets the share speed[t] / team of
+  /// the modelled cost (BlockSplit). Updated at each list build from the sweep times since the last.
+  std::vector<double> speed;
+  std::vector<double> blockCost;  // modelled cost of each block of the current split
+  struct alignas(64) SweepTime {  // (a line per thread: each writes its own)
+    double fastest = 0.0;         // s, the fastest sweep since the split was set (0: none)
+  };
+  std::vector<SweepTime> sweepTime;
+  std::uint64_t splitOfList = ~std::uint64_t{0};  // NeighbourList::version the split was set for
+  std::size_t splitOfRows = 0;
+  bool adaptive = true;  // false: the speeds stay as set (tests set skewed ones)
+  /// Steps (sweeps) a split must have been timed before its times move the speeds.
+  static constexpr int kTimedSweeps = 4, kResplitSweeps = 32;
+  int sweepsTimed = 0;
+  /// How far a new measurement moves the speed (the rest is the previous speed), and the range
+  /// a speed is kept in.
+  static constexpr double kSpeedUpdate = 0.5, kSlowest = 0.5, kFastest = 2.0;
+
   std::size_t blockEnd(int t) const { return blockStart[t + 1]; }
   void findReceivers(const NeighbourList& list, std::size_t n, int threads) {
     receives.assign(n, 0);
@@ -132,22 +183,61 @@ struct PartnerBuffers {
     receiversOfList = list.version;
     receiversOfBlocks = blockStart;
   }
+  /// The speeds from the fastest sweep of each thread since the split was set: a thread that swept
+  /// its block's modelled cost in less time is faster. The fastest sweep, not the mean: on a
+  /// shared machine single sweeps are slowed many times over (a preempted thread), a slower core
+  /// slows them all.
+  void updateSpeeds(int team) {
+    if (!adaptive || sweepsTimed < kTimedSweeps || speed.size() != static_cast<std::size_t>(team)) return;
+    std::vector<double> measured(static_cast<std::size_t>(team));
+    double mean = 0.0;
+    for (int t = 0; t < team; ++t) {
+      if (sweepTime[t].fastest <= 0.0 || blockCost[t] <= 0.0) return;
+      measured[t] = blockCost[t] / sweepTime[t].fastest;
+      mean += measured[t] / team;
+    }
+    double sum = 0.0;
+    for (int t = 0; t < team; ++t) {
+      const double blended = (1.0 - kSpeedUpdate) * speed[t] + kSpeedUpdate * measured[t] / mean;
+      speed[t] = std::clamp(blended, kSlowest, kFastest);
+      sum += speed[t];
+    }
+    for (double& v : speed) v *= team / sum;
+  }
   void prepare(int threads, std::size_t n, const NeighbourList& list, const WallContactList& wallList, bool withWalls) {
-    splitRowsAmongThreads(list, wallList, withWalls, n, threads, blockStart);
+    if (speed.size() != static_cast<std::size_t>(threads)) {
+      speed.assign(static_cast<std::size_t>(threads), 1.0);
+      sweepsTimed = 0;
+      splitOfList = ~std::uint64_t{0};
+    }
+    const bool listChanged =
+        list.version != splitOfList || n != splitOfRows || blockStart.size() != static_cast<std::size_t>(threads) + 1;
+    if (!listChanged) ++sweepsTimed;  // (the last sweep ran with this split)
+    // A new split with each list, and every kResplitSweeps sweeps in between (a settled bed keeps
+    // its lists for thousands of steps); receivers are found again only where it moved.
+    if (listChanged || (adaptive && threads > 1 && sweepsTimed >= kResplitSweeps)) {
+      updateSpeeds(threads);
+      BlockSplit::compute(list.rowStart.data(), list.touchingStart.size() == n + 1 ? list.touchingStart.data() : nullptr,
+                          withWalls ? wallList.rowStart.data() : nullptr, n, threads, blockStart, speed.data(),
+                          &blockCost);
+      splitOfList = list.version;
+      splitOfRows = n;
+      sweepTime.assign(static_cast<std::size_t>(threads), SweepTime{});
+      sweepsTimed = 0;
+    }
     if (threads > 1 && (list.version != receiversOfList || blockStart != receiversOfBlocks || receives.size() != n))
       findReceivers(list, n, threads);
-    const std::size_t t = threads > 1 ? threads - 1 : 0;
-    force.resize(t);
-    torque.resize(t);
-    lo.assign(t, static_cast<std::uint32_t>(n));
-    hi.assign(t, 0);
-    for (std::size_t k = 0; k < t; ++k) {
-      const std::size_t size = n - blockEnd(static_cast<int>(k));
-      if (force[k].size() < size) {  // (new entries are zero, like the merged old ones)
-        force[k].resize(size, Vec3{});
-        torque[k].resize(size, Vec3{});
-      }
+    outgoing.resize(static_cast<std::size_t>(threads));
+    deferred.resize(static_cast<std::size_t>(threads));
+    for (int t = 0; t < threads; ++t) {
+      outgoing[t].clear();
+      deferred[t].clear();
     }
+  }
+  /// Thread t swept its block in `seconds`.
+  void recordSweep(int t, double seconds) {
+    SweepTime& s = sweepTime[t];
+    s.fastest = s.fastest > 0.0 ? std::min(s.fastest, seconds) : seconds;
   }
 };
 
@@ -177,9 +267,12 @@ struct TriangleTouch {
 /// contact keeps its history); a contact is dropped if its contact point lies on a triangle of the
 /// same wall that was already accepted. A sphere on an edge or vertex gets one contact; a sphere
 /// in a concave corner keeps one contact per face.
-template <NormalLaw N, RollingLaw R, CohesionLaw C>
+///
+/// add(force, torque) adds one contact's force and torque to the particle (or logs them:
+/// PartnerBuffers::deferred).
+template <NormalLaw N, RollingLaw R, CohesionLaw C, class Add>
 inline void wallContactsOfParticle(ParticleSet& p, WallContactList& list, const ContactTable& table,
-                                   const WallState& walls, double dt, std::size_t i) {
+                                   const WallState& walls, double dt, std::size_t i, Add&& add) {
   const std::uint32_t first = list.rowStart[i], last = list.rowStart[i + 1];
   if (first == last) return;
   const int types = table.count();
@@ -207,8 +300,7 @@ inline void wallContactsOfParticle(ParticleSet& p, WallContactList& list, const 
     const ContactResult c = contactForce<N, R, C>(coefficients[p.type[i] * types + (*walls.material)[w]], g,
                                                   list.tangentialHistory[k],
                                                   R == RollingLaw::Epsd ? &list.rollingHistory[k] : nullptr, dt);
-    p.force[i] += c.force;
-    p.torque[i] += c.rollingTorque - ri * cross(g.normal, c.tangential);
+    add(c.force, c.rollingTorque - ri * cross(g.normal, c.tangential));
     list.force[k] = c.force;
     list.point[k] = contactPoint;
   };
@@ -323,12 +415,14 @@ struct BlockSweep {
   double dt, halfKick;
   bool external, externalTorques, withWalls, kickHere;  // kickHere: kick the rows whose forces are final in the pass
   std::uint32_t attribute = ~0u;  // index mask of radius, mass, type, 1/m, 1/I (identicalIndexMask)
-  const std::uint8_t* deferKick = nullptr;  // rows kicked after the barrier instead (PartnerBuffers::receives)
+  // Rows that receive contributions from earlier blocks (PartnerBuffers::receives; null in the
+  // first block): their contributions go to `deferred`, their kick comes after the barrier.
+  const std::uint8_t* deferKick = nullptr;
   // This thread's block.
   std::size_t begin, end;
-  Vec3* bufferForce;  // partners j >= end (entry j - end)
-  Vec3* bufferTorque;
-  std::uint32_t touchedLo, touchedHi;
+  bool laterBlocks;  // blocks follow this one: partners j >= end go to `outgoing`
+  std::vector<LoggedContribution>* outgoing;
+  std::vector<LoggedContribution>* deferred;
   std::size_t initialised;  // force/torque of [begin, initialised) hold the body forces
   ContactBatch* batch;
   // Wall contacts in batches (walls without triangle meshes).
@@ -386,7 +480,7 @@ struct BlockSweep {
         __builtin_prefetch(type + j);
       }
       // force and torque: written by the scatter (initialised long before for a far partner,
-      // when the initialisation front passed it). Partners of other blocks go to the buffers.
+      // when the initialisation front passed it). Partners of other blocks go to the logs.
       const std::size_t own = std::min<std::size_t>(j, end - 1);
       __builtin_prefetch(force + own, 1);
       __builtin_prefetch(torque + own, 1);
@@ -394,10 +488,9 @@ struct BlockSweep {
   }
 
   /// Requests the data of the partners of row a in later blocks (j >= end), some rows before the
-  /// gather needs them, and their entries of this thread's partner buffer. Those partners are the
-  /// next thread's particles: their positions and velocities were last written by that thread
-  /// (drift, kicks) and the buffer lines by the merge after the barrier, so each is a transfer
-  /// from the other core's cache. Without the request the first block's sweep took 17-23 % longer
+  /// gather needs them. Those partners are the next thread's particles: their positions and
+  /// velocities were last written by that thread (drift, kicks), so each is a transfer from the
+  /// other core's cache. Without the request the first block's sweep took 17-23 % longer
   /// than the second's for the same work (settled bed, 2 threads, session 19: 1,750 such pairs
   /// per step). Rows hold ascending partners: the later-block ones are last.
   [[gnu::always_inline]] void prefetchLaterBlockPartners(std::size_t a) const {
@@ -409,8 +502,6 @@ struct BlockSweep {
       __builtin_prefetch(position + j);
       __builtin_prefetch(velocity + j);
       __builtin_prefetch(angularVelocity + j);
-      __builtin_prefetch(bufferForce + (j - end), 1);
-      __builtin_prefetch(bufferTorque + (j - end), 1);
     }
   }
 
@@ -529,12 +620,19 @@ struct BlockSweep {
   /// Adds the evaluated pairs of the batch in list order: to their row's sum (b.rowForce/Torque,
   /// added to the row's particle in finishRun) and to the partners.
   [[gnu::always_inline]] void scatterRun() {
-    if (batch->template torqueArm<R>()) scatterRunOf<true>();
-    else scatterRunOf<false>();
+    const bool arm = batch->template torqueArm<R>();
+    if (deferKick) {
+      if (arm) scatterRunOf<true, true>();
+      else scatterRunOf<false, true>();
+    } else {
+      if (arm) scatterRunOf<true, false>();
+      else scatterRunOf<false, false>();
+    }
   }
   /// TorqueArm: ContactBatch::torqueArm (ti = 0 - y, tj = -y from y = r n x F_t, the bits of the
-  /// general formulas).
-  template <bool TorqueArm>
+  /// general formulas). Deferring: this block has receiving rows (deferKick), whose contributions
+  /// are logged (PartnerBuffers).
+  template <bool TorqueArm, bool Deferring>
   [[gnu::always_inline]] void scatterRunOf() {
     ContactBatch& b = *batch;
     Vec3* const f = force;
@@ -558,30 +656,39 @@ struct BlockSweep {
       b.rowTorque[row] += tqi;
       h[k] = Vec3{b.hx[e], b.hy[e], b.hz[e]};
       if constexpr (R == RollingLaw::Epsd) rollingHistory[k] = Vec3{b.rhx[e], b.rhy[e], b.rhz[e]};
-      if (j < blockEnd) {
+      // (logged: -fe is added where one thread subtracts fe; x + (-y) and x - y are the same bits)
+      if (j >= blockEnd) {
+        outgoing->push_back({-fe, tqj, j});
+      } else if (Deferring && deferKick[j]) {
+        deferred->push_back({-fe, tqj, j});
+      } else {
         f[j] -= fe;
         tq[j] += tqj;
-      } else {
-        bufferForce[j - blockEnd] -= fe;
-        bufferTorque[j - blockEnd] += tqj;
-        touchedLo = std::min(touchedLo, j);
-        touchedHi = std::max(touchedHi, j + 1);
       }
     }
   }
 
   /// Completes row i: its own sum, its wall contacts and (first block) its kick.
   [[gnu::always_inline]] void finishRow(std::size_t i, const Vec3& fi, const Vec3& tqi) {
-    if (rowStart[i] < rowStart[i + 1]) {
-      force[i] += fi;
-      torque[i] += tqi;
-    }
+    const bool deferredRow = deferKick && deferKick[i];
+    if (rowStart[i] < rowStart[i + 1]) addToRow(deferredRow, i, fi, tqi);
     if (withWalls && wallRowStart[i] != wallRowStart[i + 1])
-      wallContactsOfParticle<N, R, C>(*particles, *wallList, *table, *walls, dt, i);
+      wallContactsOfParticle<N, R, C>(*particles, *wallList, *table, *walls, dt, i,
+                                      [&](const Vec3& f, const Vec3& t) { addToRow(deferredRow, i, f, t); });
     // Half list: all contributions to i come from rows <= i; unless a row of an earlier block
     // lists i (deferKick), none come from other threads, so the force is final here and the kick
     // can use it while it is in cache.
     if (kickHere) kickRange(i, i + 1);
+  }
+
+  /// Adds a contribution to row i's own force and torque, or logs it (a receiving row: PartnerBuffers).
+  [[gnu::always_inline]] void addToRow(bool deferredRow, std::size_t i, const Vec3& f, const Vec3& t) {
+    if (deferredRow) {
+      deferred->push_back({f, t, static_cast<std::uint32_t>(i)});
+    } else {
+      force[i] += f;
+      torque[i] += t;
+    }
   }
 
   /// The closing half kick of the particles [from, to) whose forces are final (all but the
@@ -714,8 +821,7 @@ struct BlockSweep {
       const std::size_t i = rb + b.row[e];
       const std::uint32_t k = b.entry[e];
       const Vec3 f = loadLane(b.fx, b.fy, b.fz, e);
-      force[i] += f;
-      torque[i] += Vec3{b.tx[e], b.ty[e], b.tz[e]};
+      addToRow(deferKick && deferKick[i], i, f, Vec3{b.tx[e], b.ty[e], b.tz[e]});
       listForce[k] = f;
       listPoint[k] = {b.px[e], b.py[e], b.pz[e]};
       h[k] = {b.hx[e], b.hy[e], b.hz[e]};
@@ -733,10 +839,7 @@ struct BlockSweep {
       return;
     }
     for (std::size_t i = rb; i < re; ++i)
-      if (rowStart[i] < rowStart[i + 1]) {
-        force[i] += b.rowForce[i - rb];
-        torque[i] += b.rowTorque[i - rb];
-      }
+      if (rowStart[i] < rowStart[i + 1]) addToRow(deferKick && deferKick[i], i, b.rowForce[i - rb], b.rowTorque[i - rb]);
     scatterWalls(rb);
     if (kickHere) kickRange(rb, re);
   }
@@ -798,7 +901,7 @@ struct BlockSweep {
 
   void run() {
     if (end - begin >= kPrefetchFromRows) runRows<true, false>();
-    else if (bufferForce) runRows<false, true>();
+    else if (laterBlocks) runRows<false, true>();
     else runRows<false, false>();
   }
 
@@ -860,7 +963,8 @@ struct BlockSweep {
 /// Sets force = body forces + particle-particle + particle-wall contact forces, then (if
 /// halfKick != 0) applies the closing velocity-Verlet half kick v += halfKick F/m, w += halfKick T/I
 /// to each thread's block once its forces are final (one pass less over memory). Each thread
-/// sweeps its block of rows (BlockSweep), then adds the partner buffers of the threads before it.
+/// sweeps its block of rows (BlockSweep), then completes its receiving rows from the logs of the
+/// threads before it and its own (PartnerBuffers).
 template <NormalLaw N, RollingLaw R, CohesionLaw C>
 void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& wallList, const WallState& walls,
                           const ContactTable& table, const PeriodicBox& box, const Vec3& gravity, double dt,
@@ -923,57 +1027,49 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
     sweep.begin = begin;
     sweep.end = end;
     sweep.initialised = begin;
-    sweep.bufferForce = t < team - 1 ? buffers.force[t].data() : nullptr;
-    sweep.bufferTorque = t < team - 1 ? buffers.torque[t].data() : nullptr;
-    sweep.touchedLo = static_cast<std::uint32_t>(n);
-    sweep.touchedHi = 0;
+    sweep.laterBlocks = t < team - 1;
+    sweep.outgoing = &buffers.outgoing[t];
+    sweep.deferred = &buffers.deferred[t];
     sweep.kickHere = halfKick != 0.0;
     sweep.deferKick = t > 0 ? buffers.receives.data() : nullptr;
     sweep.batch = &batch;
     sweep.wallBatch = &wallBatch;
-    sweep.run();
-    const std::uint32_t touchedLo = sweep.touchedLo, touchedHi = sweep.touchedHi;
-    if (t < team - 1) {
-      buffers.lo[t] = touchedLo;
-      buffers.hi[t] = touchedHi;
+    if (team == 1) {
+      sweep.run();
+      return;
     }
-    if (team > 1) {
+    const double started = omp_get_wtime();
+    sweep.run();
+    buffers.recordSweep(t, omp_get_wtime() - started);
 #pragma omp barrier
-      // Each thread adds the partner buffers of the threads before it to its receiving rows, in
-      // thread order (entries outside a buffer's touched range hold zero and are left out), and
-      // kicks them.
-      if (t > 0) {
-        const std::vector<std::uint32_t>& received = buffers.received[t];
-        // The receiving rows are the particles the earlier blocks' threads read (and wrote into
-        // their buffers) in their sweeps: each store here, to v and w and to the buffer entries,
-        // meets a line that the other core holds unless it was requested for writing first.
-        // (Settled bed, 2 threads: this loop 35 -> 24 us per step; it is on the step's critical
-        // path, the other threads wait at the region's end.)
-        const bool requestLines = cpuHasPrefetchW();
-        constexpr std::size_t kAhead = 8;
-        for (std::size_t r = 0; r < received.size(); ++r) {
-          const std::uint32_t i = received[r];
-          if (requestLines && r + kAhead < received.size()) {
-            const std::uint32_t ahead = received[r + kAhead];
-            prefetchForWrite(velocity + ahead);
-            prefetchForWrite(angularVelocity + ahead);
-            for (int s = 0; s < t; ++s)
-              if (ahead >= buffers.lo[s] && ahead < buffers.hi[s]) {
-                prefetchForWrite(buffers.force[s].data() + (ahead - buffers.blockEnd(s)));
-                prefetchForWrite(buffers.torque[s].data() + (ahead - buffers.blockEnd(s)));
-              }
-          }
-          for (int s = 0; s < t; ++s) {
-            if (i < buffers.lo[s] || i >= buffers.hi[s]) continue;
-            const std::size_t e = i - buffers.blockEnd(s);
-            force[i] += buffers.force[s][e];
-            torque[i] += buffers.torque[s][e];
-            buffers.force[s][e] = Vec3{};
-            buffers.torque[s][e] = Vec3{};
-          }
-          if (halfKick != 0.0) kick(i);
-        }
+    if (t == 0) return;
+    // Thread t completes its receiving rows (their force holds the body force): the earlier
+    // blocks' contributions, block by block, each in sweep order, then its own deferred ones, so
+    // that every force is summed in the one-thread order (PartnerBuffers); then their kicks.
+    for (int s = 0; s < t; ++s)
+      for (const LoggedContribution& c : buffers.outgoing[s]) {
+        if (c.particle < begin || c.particle >= end) continue;  // (another later block's)
+        force[c.particle] += c.force;
+        torque[c.particle] += c.torque;
       }
+    for (const LoggedContribution& c : buffers.deferred[t]) {
+      force[c.particle] += c.force;
+      torque[c.particle] += c.torque;
+    }
+    if (halfKick == 0.0) return;
+    // The receiving rows are particles the earlier blocks' threads read in their sweeps: each
+    // store of a kick meets a line that the other core holds unless it was requested for writing
+    // first (settled bed, 2 threads: the merge 35 -> 24 us per step with the requests, session 30;
+    // it is on the step's critical path, the other threads wait at the region's end).
+    const std::vector<std::uint32_t>& received = buffers.received[t];
+    const bool requestLines = cpuHasPrefetchW();
+    constexpr std::size_t kAhead = 8;
+    for (std::size_t r = 0; r < received.size(); ++r) {
+      if (requestLines && r + kAhead < received.size()) {
+        prefetchForWrite(velocity + received[r + kAhead]);
+        prefetchForWrite(angularVelocity + received[r + kAhead]);
+      }
+      kick(received[r]);
     }
   };
   runTeam(threads, member);  // (a team of one: no region, core/parallel.hpp)

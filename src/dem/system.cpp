@@ -210,6 +210,12 @@ const std::vector<std::size_t>& System::threadBlocks() {
   return threadBlocks_;
 }
 
+void System::setThreadSpeeds(const std::vector<double>& speeds) {
+  buffers_.adaptive = speeds.empty();
+  buffers_.speed = speeds;
+  buffers_.splitOfList = ~std::uint64_t{0};  // a new split at the next force evaluation
+}
+
 void System::updateInverseInertia() {
   const ParticleSet& p = particles_;
   inverseMass_.resize(p.size());
@@ -514,7 +520,8 @@ std::size_t System::memoryBytes() const {
            (wallList_.tangentialHistory.capacity() + wallList_.rollingHistory.capacity() +
             wallList_.force.capacity() + wallList_.point.capacity()) *
                sizeof(Vec3);
-  for (const auto& b : buffers_.force) bytes += 2 * b.capacity() * sizeof(Vec3);
+  for (const auto& log : buffers_.outgoing) bytes += log.capacity() * sizeof(LoggedContribution);
+  for (const auto& log : buffers_.deferred) bytes += log.capacity() * sizeof(LoggedContribution);
   bytes += buffers_.receives.capacity();
   for (const auto& r : buffers_.received) bytes += r.capacity() * sizeof(std::uint32_t);
   bytes += (inverseMass_.capacity() + inverseMoment_.capacity()) * sizeof(double);

@@ -88,11 +88,17 @@ class System {
   double time() const { return time_; }
   long long steps() const { return steps_; }
   long long rebuilds() const { return rebuilds_; }
-  /// The split of the particles among the threads of the force loop and the integration
-  /// (BlockSplit of the current lists: size threads + 1; a pure function of the lists, restored by
-  /// a restart). Other particle loops may follow it to find the particles in the cache of the core
-  /// that last moved them.
+  /// A split of the particles among the threads (BlockSplit of the current lists with equal
+  /// shares: size threads + 1; a pure function of the lists, restored by a restart), for particle
+  /// loops whose results depend on the split (the coupling's sums). The force loop and the
+  /// integration start from it and then follow the threads' measured speeds: their results do
+  /// not depend on the split.
   const std::vector<std::size_t>& threadBlocks();
+  /// The force loop's split of the last force evaluation (size threads + 1).
+  const std::vector<std::size_t>& forceLoopBlocks() const { return buffers_.blockStart; }
+  /// Fixes the relative speeds the force loop's split assumes for the threads of a team of
+  /// speeds.size() (no more measuring): tests of split independence. Empty: measured again.
+  void setThreadSpeeds(const std::vector<double>& speeds);
   const NeighbourList& neighbourList() const { return list_; }
   const WallContactList& wallContacts() const { return wallList_; }
   const std::vector<WallPrimitive>& wallPrimitives() const { return primitives_; }

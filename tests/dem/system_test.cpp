@@ -300,45 +300,79 @@ TEST(DemSystem, IdenticalSpheresShortcutChangesNoBit) {
   setThreadCount(1);
 }
 
-// The per-thread partner buffers change only the summation order: two and three threads agree
-// with one thread to round-off over a short run (before chaotic divergence amplifies it). With
-// three, the last block receives partner forces from two earlier blocks, and every block kicks
-// the rows that receive nothing during its sweep (PartnerBuffers).
-TEST(DemSystem, TwoAndThreeThreadsAgreeWithOneThreadToRoundOff) {
-  // Touching lattice with random velocities: contacts everywhere within a few steps.
-  const std::string yaml = materialsYaml("hertz_mindlin", 0.5, 0.5) + R"(
+// Every force is summed in the one-thread order on any split (PartnerBuffers: the contributions
+// to the rows that receive from earlier blocks are logged and added after the barrier in row
+// order), so two and three threads, with equal, skewed or measured splits, give the bits of one
+// thread: a touching lattice in a box (contacts everywhere within a few steps) and the periodic
+// polydisperse bed with plane walls, rolling history and cohesion. With three threads the last
+// block receives from two earlier blocks.
+TEST(DemSystem, AnyThreadCountAndSplitGivesTheOneThreadBits) {
+  const std::string lattice = materialsYaml("hertz_mindlin", 0.5, 0.5) + R"(
 domain: {min: [0, 0, 0], max: [0.014, 0.014, 0.03]}
 walls:
   - {type: box, min: [0, 0, 0], max: [0.014, 0.014, 0.03]}
 insertion:
   - {type: lattice, origin: [0.001, 0.001, 0.001], spacing: 0.002, nx: 7, ny: 7, nz: 7, diameter: 0.002}
 )";
-  for (int team : {2, 3}) {
+  const std::string bed = bedCase(1, "  rolling: epsd\n  rolling_friction: 0.1\n  cohesion: simplified_jkr\n"
+                                     "  cohesion_energy_density: 1000");
+  struct Split {
+    int team;
+    std::vector<double> speeds;  // empty: measured
+  };
+  const std::vector<Split> splits = {{2, {1.0, 1.0}}, {2, {0.5, 2.0}}, {2, {2.0, 0.5}}, {2, {}},
+                                     {3, {0.6, 1.7, 0.7}}, {3, {}}};
+  for (const std::string* caseYaml : {&lattice, &bed}) {
+    const std::string& yaml = *caseYaml;
+    const bool isLattice = caseYaml == &lattice;
+    auto start = [&](System& sys) {
+      if (!isLattice) return;
+      Random rng(5);
+      for (Vec3& v : sys.particles().velocity) v = {rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1)};
+      sys.refresh();
+    };
+    const int steps = isLattice ? 300 : 3000;
     setThreadCount(1);
     DemCase one(yaml, {0, 0, -9.81});
-    setThreadCount(team);
-    DemCase many(yaml, {0, 0, -9.81});
-    for (System* sys : {one.system.get(), many.system.get()}) {
-      Random rng(5);
-      for (Vec3& v : sys->particles().velocity) v = {rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1)};
-      sys->refresh();
+    start(*one);
+    for (int s = 0; s < steps; ++s) one->step(2e-5);
+    EXPECT_GT(one->contactStatistics().particleContacts, isLattice ? 500 : 100);
+    EXPECT_GT(one->contactStatistics().wallContacts, 10);
+    EXPECT_GT(one->rebuilds(), isLattice ? 0 : 3);
+    const std::vector<char> reference = snapshot(*one);
+    for (const Split& split : splits) {
+      setThreadCount(split.team);
+      DemCase many(yaml, {0, 0, -9.81});
+      many->setThreadSpeeds(split.speeds);
+      start(*many);
+      for (int s = 0; s < steps; ++s) many->step(2e-5);
+      std::string speeds;
+      for (double v : split.speeds) speeds += std::to_string(v) + " ";
+      EXPECT_EQ(snapshot(*many), reference)
+          << (isLattice ? "lattice" : "bed") << ", " << split.team << " threads, speeds " << (speeds.empty() ? "measured" : speeds);
     }
-    for (int s = 0; s < 100; ++s) {
-      setThreadCount(1);
-      one->step(2e-5);
-      setThreadCount(team);
-      many->step(2e-5);
-    }
-    setThreadCount(1);
-    ASSERT_EQ(one->particles().size(), many->particles().size());
-    EXPECT_GT(one->contactStatistics().particleContacts, 500);
-    double maxDifference = 0.0;
-    for (std::size_t i = 0; i < one->particles().size(); ++i) {
-      ASSERT_EQ(one->particles().id[i], many->particles().id[i]);
-      maxDifference = std::max(maxDifference, norm(one->particles().velocity[i] - many->particles().velocity[i]));
-    }
-    EXPECT_LT(maxDifference, 1e-9) << team << " threads";  // velocities ~0.1 m/s
   }
+  setThreadCount(1);
+}
+
+// A skewed speed moves the force loop's split (the integration follows it), within its bounds.
+TEST(DemSystem, ThreadSpeedsMoveTheSplit) {
+  setThreadCount(2);
+  DemCase bed(bedCase(2), {0, 0, -9.81});
+  bed->step(2e-5);
+  const std::vector<std::size_t> equal = bed->threadBlocks();
+  ASSERT_EQ(equal.size(), 3u);
+  bed->setThreadSpeeds({0.5, 2.0});
+  bed->step(2e-5);
+  const std::size_t n = bed->particles().size();
+  // The first thread, a quarter as fast, gets about a fifth of the work: fewer rows than with equal
+  // shares (the rows' costs differ: not exactly a fifth of the rows).
+  const std::vector<std::size_t>& skewed = bed->forceLoopBlocks();
+  ASSERT_EQ(skewed.size(), 3u);
+  EXPECT_LT(skewed[1], equal[1]);
+  EXPECT_GT(skewed[1], n / 10);
+  EXPECT_LT(skewed[1], n / 3);
+  setThreadCount(1);
 }
 
 TEST(DemSystem, RestartContinuesBitIdentically) {
