@@ -10,6 +10,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <vector>
 
@@ -145,19 +146,20 @@ struct PartnerBuffers {
   /// the modelled cost (BlockSplit). Updated at each list build from the sweep times since the last.
   std::vector<double> speed;
   std::vector<double> blockCost;  // modelled cost of each block of the current split
-  struct alignas(64) SweepTime {  // (a line per thread: each writes its own)
-    double fastest = 0.0;         // s, the fastest sweep since the split was set (0: none)
+  struct alignas(64) SweepTimes {  // (own lines per thread: each writes its own)
+    std::array<double, 64> seconds;  // the sweeps since the split was set (the first 64)
+    int count = 0;
   };
-  std::vector<SweepTime> sweepTime;
+  std::vector<SweepTimes> sweepTime;
   std::uint64_t splitOfList = ~std::uint64_t{0};  // NeighbourList::version the split was set for
   std::size_t splitOfRows = 0;
   bool adaptive = true;  // false: the speeds stay as set (tests set skewed ones)
   /// Steps (sweeps) a split must have been timed before its times move the speeds.
-  static constexpr int kTimedSweeps = 4, kResplitSweeps = 32;
+  static constexpr int kTimedSweeps = 4, kResplitSweeps = 64;
   int sweepsTimed = 0;
   /// How far a new measurement moves the speed (the rest is the previous speed), and the range
   /// a speed is kept in.
-  static constexpr double kSpeedUpdate = 0.5, kSlowest = 0.5, kFastest = 2.0;
+  static constexpr double kSpeedUpdate = 0.25, kSlowest = 0.5, kFastest = 2.0;
 
   std::size_t blockEnd(int t) const { return blockStart[t + 1]; }
   void findReceivers(const NeighbourList& list, std::size_t n, int threads) {
@@ -183,17 +185,37 @@ struct PartnerBuffers {
     receiversOfList = list.version;
     receiversOfBlocks = blockStart;
   }
-  /// The speeds from the fastest sweep of each thread since the split was set: a thread that swept
-  /// its block's modelled cost in less time is faster. The fastest sweep, not the mean: on a
-  /// shared machine single sweeps are slowed many times over (a preempted thread), a slower core
-  /// slows them all.
+  /// A thread's typical sweep since the split was set: the mean of its sweeps, leaving out those
+  /// above 1.5 x their median (a thread preempted on a shared machine: one sweep slowed many times
+  /// over). The mean, not the fastest or the median: a thread that is slower in one step of a few
+  /// (the one after a coupling step, whose work left other data in its caches) holds the team
+  /// back in that step.
+  static double typicalSweep(const SweepTimes& times) {
+    const int count = std::min<int>(times.count, static_cast<int>(times.seconds.size()));
+    if (count == 0) return 0.0;
+    std::array<double, 64> sorted;
+    std::copy(times.seconds.begin(), times.seconds.begin() + count, sorted.begin());
+    std::nth_element(sorted.begin(), sorted.begin() + count / 2, sorted.begin() + count);
+    const double limit = 1.5 * sorted[count / 2];
+    double sum = 0.0;
+    int kept = 0;
+    for (int k = 0; k < count; ++k)
+      if (times.seconds[k] <= limit) {
+        sum += times.seconds[k];
+        ++kept;
+      }
+    return sum / kept;
+  }
+  /// The speeds from the sweep times since the split was set: a thread that swept its block's
+  /// modelled cost in less time is faster. A measurement moves the speed half way (kSpeedUpdate).
   void updateSpeeds(int team) {
     if (!adaptive || sweepsTimed < kTimedSweeps || speed.size() != static_cast<std::size_t>(team)) return;
     std::vector<double> measured(static_cast<std::size_t>(team));
     double mean = 0.0;
     for (int t = 0; t < team; ++t) {
-      if (sweepTime[t].fastest <= 0.0 || blockCost[t] <= 0.0) return;
-      measured[t] = blockCost[t] / sweepTime[t].fastest;
+      const double seconds = typicalSweep(sweepTime[t]);
+      if (seconds <= 0.0 || blockCost[t] <= 0.0) return;
+      measured[t] = blockCost[t] / seconds;
       mean += measured[t] / team;
     }
     double sum = 0.0;
@@ -222,7 +244,7 @@ struct PartnerBuffers {
                           &blockCost);
       splitOfList = list.version;
       splitOfRows = n;
-      sweepTime.assign(static_cast<std::size_t>(threads), SweepTime{});
+      sweepTime.assign(static_cast<std::size_t>(threads), SweepTimes{});
       sweepsTimed = 0;
     }
     if (threads > 1 && (list.version != receiversOfList || blockStart != receiversOfBlocks || receives.size() != n))
@@ -236,8 +258,9 @@ struct PartnerBuffers {
   }
   /// Thread t swept its block in `seconds`.
   void recordSweep(int t, double seconds) {
-    SweepTime& s = sweepTime[t];
-    s.fastest = s.fastest > 0.0 ? std::min(s.fastest, seconds) : seconds;
+    SweepTimes& s = sweepTime[t];
+    if (s.count < static_cast<int>(s.seconds.size())) s.seconds[s.count] = seconds;
+    ++s.count;
   }
 };
 
