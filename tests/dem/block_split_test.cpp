@@ -66,5 +66,73 @@ TEST(BlockSplit, SameInputGivesTheSameBlocks) {
   EXPECT_EQ(a[1], partners.size() / 2);
 }
 
+// Weighted shares (PartnerBuffers::speed): block t carries weight[t] / sum of the cost, and
+// blockCost reports what each block carries.
+TEST(BlockSplit, WeightsSetTheShares) {
+  const std::size_t n = 20000;
+  std::vector<std::uint32_t> partners(n), touching(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    partners[i] = 3 + static_cast<std::uint32_t>(i % 7);
+    touching[i] = static_cast<std::uint32_t>(i % 3);
+  }
+  const auto rowStart = offsets(partners), touchingStart = offsets(touching);
+  const std::vector<double> weight = {0.5, 1.0, 2.5};
+  std::vector<std::size_t> start;
+  std::vector<double> reported;
+  BlockSplit::compute(rowStart.data(), touchingStart.data(), nullptr, n, 3, start, weight.data(), &reported);
+  const std::vector<std::uint32_t> noWalls(n, 0);
+  double total = 0.0;
+  for (int t = 0; t < 3; ++t) total += blockCost(partners, touching, noWalls, start[t], start[t + 1]);
+  ASSERT_EQ(reported.size(), 3u);
+  for (int t = 0; t < 3; ++t) {
+    const double cost = blockCost(partners, touching, noWalls, start[t], start[t + 1]);
+    EXPECT_NEAR(cost, total * weight[t] / 4.0, 1e-3 * total) << "block " << t;
+    EXPECT_NEAR(reported[t], cost, 1e-9 * total) << "block " << t;
+  }
+  // Equal weights give the unweighted split.
+  std::vector<std::size_t> equal, unweighted;
+  const std::vector<double> ones = {1.0, 1.0, 1.0};
+  BlockSplit::compute(rowStart.data(), touchingStart.data(), nullptr, n, 3, equal, ones.data());
+  BlockSplit::compute(rowStart.data(), touchingStart.data(), nullptr, n, 3, unweighted);
+  EXPECT_EQ(equal, unweighted);
+}
+
+// The speeds follow the measured sweeps: a thread that takes twice as long for its block's cost
+// loses work, a single preempted sweep does not move them, and the speeds stay in their bounds.
+TEST(PartnerBuffers, SpeedsFollowTheMeasuredSweeps) {
+  PartnerBuffers buffers;
+  buffers.speed = {1.0, 1.0};
+  buffers.blockCost = {100.0, 100.0};
+  buffers.sweepTime.assign(2, PartnerBuffers::SweepTimes{});
+  auto measure = [&](double first, double second, double outlier) {
+    buffers.sweepTime.assign(2, PartnerBuffers::SweepTimes{});
+    for (int k = 0; k < 30; ++k) {
+      buffers.recordSweep(0, first);
+      buffers.recordSweep(1, k == 7 ? outlier : second);
+    }
+    buffers.sweepsTimed = 30;
+    buffers.updateSpeeds(2);
+  };
+  // Equal sweeps and one preempted sweep of the second thread (50 x): nothing moves.
+  measure(1e-3, 1e-3, 50e-3);
+  EXPECT_DOUBLE_EQ(buffers.speed[0], 1.0);
+  EXPECT_DOUBLE_EQ(buffers.speed[1], 1.0);
+  // The second thread twice as slow: measured speeds 4/3 and 2/3; each update moves a quarter of
+  // the way, so the speeds converge to them geometrically.
+  for (int update = 0; update < 40; ++update) measure(1e-3, 2e-3, 2e-3);
+  EXPECT_NEAR(buffers.speed[0], 4.0 / 3.0, 1e-3);
+  EXPECT_NEAR(buffers.speed[1], 2.0 / 3.0, 1e-3);
+  EXPECT_NEAR(buffers.speed[0] + buffers.speed[1], 2.0, 1e-12);
+  // Too few sweeps timed: no update.
+  buffers.sweepsTimed = PartnerBuffers::kTimedSweeps - 1;
+  const std::vector<double> before = buffers.speed;
+  buffers.updateSpeeds(2);
+  EXPECT_EQ(buffers.speed, before);
+  // Not adaptive (speeds fixed by a test): no update.
+  buffers.adaptive = false;
+  measure(1e-3, 1e-3, 1e-3);
+  EXPECT_EQ(buffers.speed, before);
+}
+
 }  // namespace
 }  // namespace gf::dem
