@@ -3,6 +3,7 @@
 // Counters: ns_per_particle_step (wall time / (particles x steps)), bytes_per_particle (all DEM
 // arrays incl. neighbour list and contact history), rebuilds during the timed steps.
 #include <benchmark/benchmark.h>
+#include <omp.h>
 #include <fmt/format.h>
 
 #include <chrono>
@@ -13,6 +14,7 @@
 #include <numbers>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/domain.hpp"
 #include "core/params.hpp"
@@ -156,10 +158,15 @@ std::unique_ptr<Bed> bedFromTile(const SettledTile& tile, int tx, int ty, bool p
   return bed;
 }
 
+const SettledTile& issueBedTile() {
+  static const SettledTile tile = settleBed(0.06, 0.06, 15000, false);
+  return tile;
+}
+
 // ~15,000 spheres settled in the 0.06 x 0.06 x 0.2 m box of the issue (walls on all sides).
 void BM_DemSettledBed(benchmark::State& state) {
   const auto start = std::chrono::steady_clock::now();
-  static const SettledTile tile = settleBed(0.06, 0.06, 15000, false);
+  const SettledTile& tile = issueBedTile();
   state.counters["setup_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // The settled positions for the same bed in another code (bench/liggghts_settled_bed.sh):
   // x, y, z, r in m, one sphere per line, written to a temporary file and renamed.
@@ -168,6 +175,48 @@ void BM_DemSettledBed(benchmark::State& state) {
   runSteps(state, *bed, 500);
 }
 BENCHMARK(BM_DemSettledBed)->Unit(benchmark::kMillisecond)->MinTime(3.0)->UseRealTime();
+
+// The force loop's split from the threads' measured speeds against the equal-share split, on the
+// issue's settled bed: two copies of the bed in one process, stepped in turns of 50 steps (the
+// order alternating), so both see the same host (a shared machine's speed drifts over seconds,
+// which separate runs would compare instead). Same bits either way (docs/dem.md, session 31);
+// equal_over_measured > 1: the measured split is faster. Meaningful with 2 or more threads.
+void BM_DemSettledBedSplit(benchmark::State& state) {
+  const SettledTile& tile = issueBedTile();
+  auto measured = bedFromTile(tile, 1, 1, false);
+  auto equal = bedFromTile(tile, 1, 1, false);
+  const int threads = omp_get_max_threads();
+  equal->system->setThreadSpeeds(std::vector<double>(static_cast<std::size_t>(threads), 1.0));
+  const double dt = 2e-6;
+  constexpr int kTurn = 50;
+  for (int k = 0; k < 500; ++k) {
+    measured->system->step(dt);
+    equal->system->step(dt);
+  }
+  double secondsMeasured = 0.0, secondsEqual = 0.0;
+  long long turns = 0;
+  auto turn = [&](System& s) {
+    const auto begin = std::chrono::steady_clock::now();
+    for (int k = 0; k < kTurn; ++k) s.step(dt);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  };
+  for (auto _ : state) {
+    if (turns % 2 == 0) {
+      secondsMeasured += turn(*measured->system);
+      secondsEqual += turn(*equal->system);
+    } else {
+      secondsEqual += turn(*equal->system);
+      secondsMeasured += turn(*measured->system);
+    }
+    ++turns;
+  }
+  const double particleSteps = static_cast<double>(measured->system->particles().size()) * kTurn * static_cast<double>(turns);
+  state.counters["ns_measured_split"] = 1e9 * secondsMeasured / particleSteps;
+  state.counters["ns_equal_split"] = 1e9 * secondsEqual / particleSteps;
+  state.counters["equal_over_measured"] = secondsEqual / secondsMeasured;
+  state.counters["threads"] = threads;
+}
+BENCHMARK(BM_DemSettledBedSplit)->Unit(benchmark::kMillisecond)->MinTime(10.0)->UseRealTime();
 
 // Neighbour-list build of the settled bed above (linked cells, candidate test, history carried
 // over from the previous build of the same particles, as at a rebuild without reordering; on a
