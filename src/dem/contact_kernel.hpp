@@ -143,7 +143,8 @@ struct PartnerBuffers {
 
   // Split following the threads' measured speed (only the speed depends on it).
   /// Relative speed of each thread of the team (mean 1): block t gets the share speed[t] / team of
-  /// the modelled cost (BlockSplit). Updated at each list build from the sweep times since the last.
+  /// the modelled cost (BlockSplit). Updated at each new split (with each list build, and every
+  /// kResplitSweeps sweeps between) from the sweep times since the last.
   std::vector<double> speed;
   std::vector<double> blockCost;  // modelled cost of each block of the current split
   struct alignas(64) SweepTimes {  // (own lines per thread: each writes its own)
@@ -207,7 +208,8 @@ struct PartnerBuffers {
     return sum / kept;
   }
   /// The speeds from the sweep times since the split was set: a thread that swept its block's
-  /// modelled cost in less time is faster. A measurement moves the speed half way (kSpeedUpdate).
+  /// modelled cost in less time is faster. A measurement moves the speed a quarter of the way
+  /// (kSpeedUpdate): single windows of a few dozen sweeps are noisy on a shared machine.
   void updateSpeeds(int team) {
     if (!adaptive || sweepsTimed < kTimedSweeps || speed.size() != static_cast<std::size_t>(team)) return;
     std::vector<double> measured(static_cast<std::size_t>(team));
