@@ -1071,26 +1071,39 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
     // Thread t completes its receiving rows (their force holds the body force): the earlier
     // blocks' contributions, block by block, each in sweep order, then its own deferred ones, so
     // that every force is summed in the one-thread order (PartnerBuffers); then their kicks.
+    //
+    // The receiving rows are particles the earlier blocks' threads read in their sweeps: each
+    // store of a kick meets a line that the other core holds unless it was requested for writing
+    // first. The requests go out one row per replayed entry, so that the lines arrive while the
+    // logs are replayed (settled bed, 2 threads: the kicks of ~590 rows 10-11 -> 6.5 us per step,
+    // the merge 19-21 -> 16-17 us; it is on the step's critical path, the other threads wait at
+    // the region's end), then 8 rows ahead of the kicks for any left.
+    const std::vector<std::uint32_t>& received = buffers.received[t];
+    const bool requestLines = cpuHasPrefetchW() && halfKick != 0.0;
+    std::size_t requested = 0;
+    auto requestNextRow = [&]() {
+      if (requestLines && requested < received.size()) {
+        prefetchForWrite(velocity + received[requested]);
+        prefetchForWrite(angularVelocity + received[requested]);
+        ++requested;
+      }
+    };
     for (int s = 0; s < t; ++s)
       for (const LoggedContribution& c : buffers.outgoing[s]) {
+        requestNextRow();
         if (c.particle < begin || c.particle >= end) continue;  // (another later block's)
         force[c.particle] += c.force;
         torque[c.particle] += c.torque;
       }
     for (const LoggedContribution& c : buffers.deferred[t]) {
+      requestNextRow();
       force[c.particle] += c.force;
       torque[c.particle] += c.torque;
     }
     if (halfKick == 0.0) return;
-    // The receiving rows are particles the earlier blocks' threads read in their sweeps: each
-    // store of a kick meets a line that the other core holds unless it was requested for writing
-    // first (settled bed, 2 threads: the merge 35 -> 24 us per step with the requests, session 30;
-    // it is on the step's critical path, the other threads wait at the region's end).
-    const std::vector<std::uint32_t>& received = buffers.received[t];
-    const bool requestLines = cpuHasPrefetchW();
     constexpr std::size_t kAhead = 8;
     for (std::size_t r = 0; r < received.size(); ++r) {
-      if (requestLines && r + kAhead < received.size()) {
+      if (requestLines && r + kAhead < received.size() && r + kAhead >= requested) {
         prefetchForWrite(velocity + received[r + kAhead]);
         prefetchForWrite(angularVelocity + received[r + kAhead]);
       }
