@@ -89,6 +89,7 @@ struct BlockSplit {
       double before = 0.0;  // weights of the blocks before t
       for (int t = 1; t < team; ++t) {
         before += weight ? weight[t - 1] : 1.0;
+        // (unweighted: the formula of before, whose bits the coupling's split keeps: threadBlocks)
         const double target = weight ? total * (before / weightSum) : t * (total / team);
         start[t] = std::max(start[t - 1], firstRow([&](std::size_t i) { return cost(i) >= target; }));
       }
@@ -442,7 +443,7 @@ struct BlockSweep {
   std::uint32_t attribute = ~0u;  // index mask of radius, mass, type, 1/m, 1/I (identicalIndexMask)
   // Rows that receive contributions from earlier blocks (PartnerBuffers::receives; null in the
   // first block): their contributions go to `deferred`, their kick comes after the barrier.
-  const std::uint8_t* deferKick = nullptr;
+  const std::uint8_t* receiving = nullptr;
   // This thread's block.
   std::size_t begin, end;
   bool laterBlocks;  // blocks follow this one: partners j >= end go to `outgoing`
@@ -646,7 +647,7 @@ struct BlockSweep {
   /// added to the row's particle in finishRun) and to the partners.
   [[gnu::always_inline]] void scatterRun() {
     const bool arm = batch->template torqueArm<R>();
-    if (deferKick) {
+    if (receiving) {
       if (arm) scatterRunOf<true, true>();
       else scatterRunOf<false, true>();
     } else {
@@ -655,7 +656,7 @@ struct BlockSweep {
     }
   }
   /// TorqueArm: ContactBatch::torqueArm (ti = 0 - y, tj = -y from y = r n x F_t, the bits of the
-  /// general formulas). Deferring: this block has receiving rows (deferKick), whose contributions
+  /// general formulas). Deferring: this block has receiving rows (`receiving`), whose contributions
   /// are logged (PartnerBuffers).
   template <bool TorqueArm, bool Deferring>
   [[gnu::always_inline]] void scatterRunOf() {
@@ -684,7 +685,7 @@ struct BlockSweep {
       // (logged: -fe is added where one thread subtracts fe; x + (-y) and x - y are the same bits)
       if (j >= blockEnd) {
         outgoing->push_back({-fe, tqj, j});
-      } else if (Deferring && deferKick[j]) {
+      } else if (Deferring && receiving[j]) {
         deferred->push_back({-fe, tqj, j});
       } else {
         f[j] -= fe;
@@ -695,20 +696,19 @@ struct BlockSweep {
 
   /// Completes row i: its own sum, its wall contacts and (first block) its kick.
   [[gnu::always_inline]] void finishRow(std::size_t i, const Vec3& fi, const Vec3& tqi) {
-    const bool deferredRow = deferKick && deferKick[i];
-    if (rowStart[i] < rowStart[i + 1]) addToRow(deferredRow, i, fi, tqi);
+    if (rowStart[i] < rowStart[i + 1]) addToRow(i, fi, tqi);
     if (withWalls && wallRowStart[i] != wallRowStart[i + 1])
       wallContactsOfParticle<N, R, C>(*particles, *wallList, *table, *walls, dt, i,
-                                      [&](const Vec3& f, const Vec3& t) { addToRow(deferredRow, i, f, t); });
+                                      [&](const Vec3& f, const Vec3& t) { addToRow(i, f, t); });
     // Half list: all contributions to i come from rows <= i; unless a row of an earlier block
-    // lists i (deferKick), none come from other threads, so the force is final here and the kick
+    // lists i (`receiving`), none come from other threads, so the force is final here and the kick
     // can use it while it is in cache.
     if (kickHere) kickRange(i, i + 1);
   }
 
   /// Adds a contribution to row i's own force and torque, or logs it (a receiving row: PartnerBuffers).
-  [[gnu::always_inline]] void addToRow(bool deferredRow, std::size_t i, const Vec3& f, const Vec3& t) {
-    if (deferredRow) {
+  [[gnu::always_inline]] void addToRow(std::size_t i, const Vec3& f, const Vec3& t) {
+    if (receiving && receiving[i]) {
       deferred->push_back({f, t, static_cast<std::uint32_t>(i)});
     } else {
       force[i] += f;
@@ -727,7 +727,7 @@ struct BlockSweep {
     const double* __restrict const ii = inverseMoment;
     const double h = halfKick;
     const std::size_t at = attribute;
-    const std::uint8_t* const defer = deferKick;
+    const std::uint8_t* const defer = receiving;
     if (defer) {
       for (std::size_t q = from; q < to; ++q)
         if (!defer[q]) {
@@ -846,7 +846,7 @@ struct BlockSweep {
       const std::size_t i = rb + b.row[e];
       const std::uint32_t k = b.entry[e];
       const Vec3 f = loadLane(b.fx, b.fy, b.fz, e);
-      addToRow(deferKick && deferKick[i], i, f, Vec3{b.tx[e], b.ty[e], b.tz[e]});
+      addToRow(i, f, Vec3{b.tx[e], b.ty[e], b.tz[e]});
       listForce[k] = f;
       listPoint[k] = {b.px[e], b.py[e], b.pz[e]};
       h[k] = {b.hx[e], b.hy[e], b.hz[e]};
@@ -864,7 +864,7 @@ struct BlockSweep {
       return;
     }
     for (std::size_t i = rb; i < re; ++i)
-      if (rowStart[i] < rowStart[i + 1]) addToRow(deferKick && deferKick[i], i, b.rowForce[i - rb], b.rowTorque[i - rb]);
+      if (rowStart[i] < rowStart[i + 1]) addToRow(i, b.rowForce[i - rb], b.rowTorque[i - rb]);
     scatterWalls(rb);
     if (kickHere) kickRange(rb, re);
   }
@@ -1056,7 +1056,7 @@ void contactForcesAndKick(ParticleSet& p, NeighbourList& list, WallContactList& 
     sweep.outgoing = &buffers.outgoing[t];
     sweep.deferred = &buffers.deferred[t];
     sweep.kickHere = halfKick != 0.0;
-    sweep.deferKick = t > 0 ? buffers.receives.data() : nullptr;
+    sweep.receiving = t > 0 ? buffers.receives.data() : nullptr;
     sweep.batch = &batch;
     sweep.wallBatch = &wallBatch;
     if (team == 1) {
