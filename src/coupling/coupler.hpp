@@ -17,6 +17,7 @@
 // implicit part and the balance use the fluid velocity).
 #include <array>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -164,7 +165,11 @@ class Coupler {
   const CouplerSettings& settings() const { return settings_; }
   const DragLaw& dragLaw() const { return *drag_; }
   const GridTopology& topology() const { return topology_; }
-  const ParticleStencils& stencils() const { return stencils_; }
+  const ParticleStencils& stencils() const {
+    if (!stencilsKept_)
+      throw std::logic_error("coupling: the stencils of the last fused deposit were built piece by piece and not kept");
+    return stencils_;
+  }
 
   /// State across coupling steps: the previous slip per particle (virtual mass).
   void save(BinaryWriter& out) const;
@@ -219,6 +224,10 @@ class Coupler {
   std::unique_ptr<DragLaw> drag_;
   std::unique_ptr<VoidFractionScheme> scheme_;
   ParticleStencils stencils_;
+  // A fused deposit that nothing reads the stencils of afterwards builds each piece into its
+  // thread's buffer (computeVoidFraction); stencils_ then holds the counts' size only.
+  std::vector<ParticleStencils> pieceStencils_;
+  bool stencilsKept_ = true;
   FluidView lastFluid_;
   Field solidFraction_;
   Field vorticity_[3];

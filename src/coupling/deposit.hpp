@@ -97,11 +97,14 @@ inline bool useWideDeposit() { return wideDeposit().enabled(); }
 /// target[ch] += w * v[ch] (no fused multiply-add: not enabled for this function), the same bits.
 /// Widens [lowestCell, highestCell] to the cells written.
 template <int C, class Values>
-__attribute__((target("avx2"))) void depositPieceWide(const int* countOf, const std::size_t* cellOf,
-                                                      const double* weightOf, std::size_t capacity,
-                                                      std::int64_t begin, std::int64_t end, double* sum,
-                                                      Values& values, std::size_t& lowestCell,
+__attribute__((target("avx2"))) void depositPieceWide(const StencilPiece& piece, std::int64_t begin, std::int64_t end,
+                                                      double* sum, Values& values, std::size_t& lowestCell,
                                                       std::size_t& highestCell) {
+  // (the piece's arrays as plain pointers: the struct's would be reloaded after every store)
+  const int* const countOf = piece.count;
+  const std::size_t* const cellOf = piece.cell;
+  const double* const weightOf = piece.weight;
+  const std::size_t capacity = piece.capacity;
   std::size_t lowest = lowestCell, highest = highestCell;  // (locals: no store per entry)
   constexpr int kQuads = C / 4;
   constexpr int kPair = (C % 4) / 2;  // 0 or 1
@@ -114,8 +117,9 @@ __attribute__((target("avx2"))) void depositPieceWide(const int* countOf, const 
     __m128d pair = _mm_setzero_pd();
     if constexpr (kPair == 1) pair = _mm_set_pd(v[4 * kQuads + 1], v[4 * kQuads]);
     const double last = v[C - 1];
-    const std::size_t base = static_cast<std::size_t>(p) * capacity;
-    const int count = countOf[p];
+    const auto q = static_cast<std::size_t>(p - begin);  // (index in the piece)
+    const std::size_t base = q * capacity;
+    const int count = countOf[q];
     for (int e = 0; e < count; ++e) {
       const std::size_t cell = cellOf[base + e];
       lowest = std::min(lowest, cell);
@@ -140,7 +144,9 @@ __attribute__((target("avx2"))) void depositPieceWide(const int* countOf, const 
 /// `cells` flat cells (over b.runs if set; valid until the next deposit with the same buffers).
 /// prepare(thread, begin, end) runs on the depositing thread (0-based index in the team) just
 /// before particles [begin, end) are deposited, pieces of kDepositPiece particles in particle
-/// order per thread: it may build their stencils there (read back from cache) or sum over them.
+/// order per thread, and returns the StencilPiece of those particles: it may build their stencils
+/// there (read back from cache), into `s` or into a buffer of its own for one piece (stencils
+/// that nothing reads later then never go out to memory), and sum over them.
 template <int C, class Values, class Prepare>
 const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_t cells, DepositBuffers& b,
                                            Values&& values, Prepare&& prepare) {
@@ -161,26 +167,28 @@ const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_
     std::size_t lowest = cells, highest = 0;
     for (std::int64_t piece = begin; piece < end; piece += kDepositPiece) {
       const std::int64_t pieceEnd = std::min(end, piece + kDepositPiece);
-      prepare(thread, static_cast<std::size_t>(piece), static_cast<std::size_t>(pieceEnd));
-      // the stencil arrays as plain pointers (the vectors' own would be reloaded after every store)
-      const int* countOf = s.count.data();
-      const std::size_t* cellOf = s.cell.data();
-      const double* weightOf = s.weight.data();
-      const auto capacity = static_cast<std::size_t>(s.capacity);
+      const StencilPiece stencils =
+          prepare(thread, static_cast<std::size_t>(piece), static_cast<std::size_t>(pieceEnd));
 #if defined(GF_X86_SIMD)
       if constexpr (C >= 4) {
         if (wide) {
-          depositPieceWide<C>(countOf, cellOf, weightOf, capacity, piece, pieceEnd, sum, values, lowest, highest);
+          depositPieceWide<C>(stencils, piece, pieceEnd, sum, values, lowest, highest);
           continue;
         }
       }
 #endif
+      // the stencil arrays as plain pointers (the struct's would be reloaded after every store)
+      const int* const countOf = stencils.count;
+      const std::size_t* const cellOf = stencils.cell;
+      const double* const weightOf = stencils.weight;
+      const std::size_t capacity = stencils.capacity;
       for (std::int64_t p = piece; p < pieceEnd; ++p) {
         double v[C];
         values(static_cast<std::size_t>(p), v);
         const PackedValues<C> packed(v);
-        const std::size_t base = static_cast<std::size_t>(p) * capacity;
-        const int count = countOf[p];
+        const auto q = static_cast<std::size_t>(p - piece);  // (index in the piece)
+        const std::size_t base = q * capacity;
+        const int count = countOf[q];
         for (int e = 0; e < count; ++e) {
           const std::size_t cell = cellOf[base + e];
           lowest = std::min(lowest, cell);
@@ -230,7 +238,8 @@ const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_
 template <int C, class Values>
 const std::vector<double>& depositChannels(const ParticleStencils& s, std::size_t cells, DepositBuffers& b,
                                            Values&& values) {
-  return depositChannels<C>(s, cells, b, values, [](int, std::size_t, std::size_t) {});
+  return depositChannels<C>(s, cells, b, values,
+                            [&s](int, std::size_t begin, std::size_t) { return StencilPiece::of(s, begin); });
 }
 
 }  // namespace gf::coupling

@@ -26,6 +26,20 @@ struct ParticleStencils {
   std::size_t size() const { return count.size(); }
 };
 
+/// The stencils of a piece of consecutive particles, wherever they are stored: the piece's first
+/// particle has count[0] entries at cell[0..), weight[0..); particle q of the piece at q * capacity.
+struct StencilPiece {
+  const int* count;
+  const std::size_t* cell;
+  const double* weight;
+  std::size_t capacity;
+  /// The piece of `s` that starts at particle `first`.
+  static StencilPiece of(const ParticleStencils& s, std::size_t first) {
+    const auto capacity = static_cast<std::size_t>(s.capacity);
+    return {s.count.data() + first, s.cell.data() + first * capacity, s.weight.data() + first * capacity, capacity};
+  }
+};
+
 /// Writes the stencil of one particle; merges repeated cells. Owned by one thread per particle.
 class StencilWriter {
  public:

@@ -242,6 +242,43 @@ TEST(Exchange, SourcesAfterDemSubstepsFollowParticlesByIdAndKeepTheBalance) {
   }
 }
 
+TEST(Exchange, StencilsOfAFusedDepositAreRebuiltWhenAnUnfusedDepositNeedsThem) {
+  // After the time-loop order (forces -> move -> void fraction with the exchange fused -> sources)
+  // the divided stencils were built piece by piece and not kept (trilinear forces read none):
+  // stencils() says so, and a later unfused exchange (forces again, sources) rebuilds them from
+  // the particles it is given: the same fields as a coupler that recomputed the void fraction.
+  const dem::ParticleSet base = randomParticles(5000, 0.001, 0.0015, {0, 0, 0}, {0.08, 0.077, 0.081}, 17);
+  FluidFields fluid(kGrid);
+  fluid.setVelocity(kGrid, swirl);
+  std::vector<Field> results[2];
+  for (int variant = 0; variant < 2; ++variant) {
+    auto c = makeCoupler("  void_fraction: divided\n  interpolation: trilinear\n", kGrid);
+    dem::ParticleSet particles = base;
+    CouplingFields fields(kGrid);
+    c->computeVoidFraction(particles, fields);
+    EXPECT_NO_THROW(c->stencils());  // (nothing pending: an unfused deposit keeps them)
+    c->computeParticleForces(fluid.view(1.2, 1.8e-5), fields, particles);
+    for (std::size_t p = 0; p < particles.size(); ++p) particles.position[p].z += 0.0004;  // "DEM"
+    c->computeVoidFraction(particles, fields);
+    EXPECT_THROW(c->stencils(), std::logic_error);
+    c->fillFluidSources(particles, fields);
+    if (variant == 1) {
+      c->computeVoidFraction(particles, fields);  // (nothing pending: kept)
+      EXPECT_NO_THROW(c->stencils());
+    }
+    c->computeParticleForces(fluid.view(1.2, 1.8e-5), fields, particles);
+    if (variant == 0) {
+      EXPECT_THROW(c->fillFluidSources(fields), std::logic_error);  // (no particles to rebuild from)
+    }
+    c->fillFluidSources(particles, fields);
+    EXPECT_LT(norm(c->momentumBalanceError()), 1e-13 * c->exchangedForceScale());
+    results[variant] = {fields.forceDensity[0],     fields.forceDensity[1],     fields.forceDensity[2],
+                        fields.dragCoefficient,     fields.particleVelocity[0], fields.particleVelocity[1],
+                        fields.particleVelocity[2], fields.voidFraction};
+  }
+  for (std::size_t f = 0; f < results[0].size(); ++f) EXPECT_EQ(results[0][f].data(), results[1][f].data()) << "field " << f;
+}
+
 TEST(Exchange, FullCouplingStepIsBitIdenticalForTheSameThreadCount) {
   // 5000 particles: the parallel paths (stencils, sampling, deposit with per-thread buffers) run.
   const CartesianGrid g = makeGrid({12, 12, 12}, {0.01, 0.01, 0.01});

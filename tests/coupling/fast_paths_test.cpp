@@ -291,8 +291,8 @@ TEST(FastPaths, StencilsBuiltInPiecesEqualTheWholeBuildForEveryScheme) {
       scheme->beginStencils(*particles, t, pieces);
       // uneven pieces, last first
       const std::size_t n = particles->size(), cut = n / 3;
-      scheme->buildStencilRange(*particles, t, pieces, cut, n);
-      scheme->buildStencilRange(*particles, t, pieces, 0, cut);
+      scheme->buildStencilRange(*particles, t, pieces, cut, n, cut);
+      scheme->buildStencilRange(*particles, t, pieces, 0, cut, 0);
       ASSERT_EQ(pieces.capacity, whole.capacity) << name;
       ASSERT_EQ(pieces.count, whole.count) << name;
       for (std::size_t p = 0; p < n; ++p)
@@ -301,6 +301,22 @@ TEST(FastPaths, StencilsBuiltInPiecesEqualTheWholeBuildForEveryScheme) {
           ASSERT_EQ(pieces.cell[q], whole.cell[q]) << name;
           ASSERT_EQ(pieces.weight[q], whole.weight[q]) << name;
         }
+      // schemes that build in pieces: each piece into a buffer of one piece (entries from 0)
+      ParticleStencils sized;
+      if (!scheme->beginStencils(*particles, t, sized)) continue;
+      ParticleStencils buffer;
+      buffer.resize(100, sized.capacity);
+      for (std::size_t begin = 0; begin < n; begin += 100) {
+        const std::size_t end = std::min(n, begin + 100);
+        scheme->buildStencilRange(*particles, t, buffer, begin, end, 0);
+        for (std::size_t p = begin; p < end; ++p) {
+          ASSERT_EQ(buffer.count[p - begin], whole.count[p]) << name;
+          for (int e = 0; e < whole.count[p]; ++e) {
+            ASSERT_EQ(buffer.cell[(p - begin) * whole.capacity + e], whole.cell[p * whole.capacity + e]) << name;
+            ASSERT_EQ(buffer.weight[(p - begin) * whole.capacity + e], whole.weight[p * whole.capacity + e]) << name;
+          }
+        }
+      }
     }
   }
 }
@@ -380,6 +396,7 @@ TEST(FastPaths, SumsAndDepositsFollowTheGivenParticleSplit) {
         [&](int thread, std::size_t begin, std::size_t end) {
           if (seen)
             for (std::size_t p = begin; p < end; ++p) (*seen)[p] = thread;
+          return StencilPiece::of(s, begin);
         });
   };
   std::vector<int> depositedBy(s.size(), -1);
@@ -556,4 +573,44 @@ TEST(FastPaths, FluidViewGhostsAreNeverRead) {
         EXPECT_EQ(torque[0], torque[1]) << where;
         EXPECT_EQ(density[0], density[1]) << where;
       }
+}
+
+TEST(FastPaths, DepositFromOnePieceBuffersEqualsTheDepositOverKeptStencils) {
+  // The Coupler's fused deposit builds each piece of divided stencils into its thread's buffer
+  // (nothing keeps them): the same sums, bit for bit, as over the whole stencil set, on 1 thread
+  // and on the threads at hand, in the pairwise and the wide form.
+  const CartesianGrid g = makeGrid({3, 5, 6}, {0.01, 0.01, 0.01});
+  const dem::ParticleSet particles = randomParticles(9000, 0.001, 0.0015, {0, 0, 0}, {0.03, 0.05, 0.06}, 41);
+  const auto scheme = makeScheme("divided");
+  const GridTopology t(g, {false, false, true});
+  ParticleStencils whole;
+  scheme->buildStencils(particles, t, whole);
+  const std::size_t cells = Field(g).data().size();
+  auto value = [&](std::size_t p, double (&v)[5]) {
+    for (int ch = 0; ch < 5; ++ch) v[ch] = particles.position[p][ch % 3] * (ch + 1) - 0.01 * ch;
+  };
+  const int saved = omp_get_max_threads();
+  for (int threads : {1, saved}) {
+    omp_set_num_threads(threads);
+    for (bool wide : {false, true}) {
+      allowWideDeposit(wide);
+      DepositBuffers kept, transient;
+      const std::vector<double> expected = depositChannels<5>(whole, cells, kept, value);
+      ParticleStencils sized;
+      ASSERT_TRUE(scheme->beginStencils(particles, t, sized));
+      std::vector<ParticleStencils> buffers(static_cast<std::size_t>(threads));
+      for (ParticleStencils& b : buffers) b.resize(static_cast<std::size_t>(kDepositPiece), sized.capacity);
+      const std::vector<double> sums =
+          depositChannels<5>(sized, cells, transient, value, [&](int thread, std::size_t begin, std::size_t end) {
+            ParticleStencils& b = buffers[static_cast<std::size_t>(thread)];
+            scheme->buildStencilRange(particles, t, b, begin, end, 0);
+            return StencilPiece::of(b, 0);
+          });
+      for (const auto& run : kept.runs.empty() ? std::vector<std::array<std::size_t, 2>>{{0, cells}} : kept.runs)
+        for (std::size_t q = run[0] * 5; q < (run[0] + run[1]) * 5; ++q)
+          ASSERT_EQ(sums[q], expected[q]) << "threads " << threads << ", wide " << wide << ", entry " << q;
+    }
+  }
+  allowWideDeposit(true);
+  omp_set_num_threads(saved);
 }

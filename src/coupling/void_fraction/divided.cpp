@@ -149,18 +149,17 @@ class DividedVoidFraction final : public VoidFractionScheme {
   explicit DividedVoidFraction(Params&) {}
   void buildStencils(const dem::ParticleSet& particles, const GridTopology& topology,
                      ParticleStencils& stencils) const override {
-    beginStencils(particles, topology, stencils);
-    if (stencils.capacity != kBlockCapacity) return;  // built by beginStencils
+    if (!beginStencils(particles, topology, stencils)) return;  // built by beginStencils
     constexpr std::int64_t kPiece = 256;
     const auto n = static_cast<std::int64_t>(particles.size());
     forEachIndex((n + kPiece - 1) / kPiece, 29 * kPiece, [&](std::int64_t piece) {
       const auto begin = static_cast<std::size_t>(piece * kPiece);
-      buildStencilRange(particles, topology, stencils, begin,
-                        std::min(begin + kPiece, static_cast<std::size_t>(n)));
+      buildStencilRange(particles, topology, stencils, begin, std::min(begin + kPiece, static_cast<std::size_t>(n)),
+                        begin);
     });
   }
 
-  void beginStencils(const dem::ParticleSet& particles, const GridTopology& topology,
+  bool beginStencils(const dem::ParticleSet& particles, const GridTopology& topology,
                      ParticleStencils& stencils) const override {
     const CartesianGrid& g = topology.grid;
     // Fast path when the points of every particle span less than one cell per axis: each point
@@ -171,7 +170,7 @@ class DividedVoidFraction final : public VoidFractionScheme {
     stencils.resize(particles.size(), block ? kBlockCapacity : kPoints);
     if (block) {
       if (!tables_ || !tables_->fits(topology)) tables_ = std::make_unique<BlockTables>(topology);
-      return;
+      return true;
     }
     forEachIndex(static_cast<std::int64_t>(particles.size()), 29, [&](std::int64_t p) {
       StencilWriter w(stencils, static_cast<std::size_t>(p));
@@ -183,23 +182,26 @@ class DividedVoidFraction final : public VoidFractionScheme {
       }
       w.normalise();  // sum of 29 x (1/29) is 1 up to round-off; make it 1 to the last bit we can
     });
+    return false;
   }
 
-  void buildStencilRange(const dem::ParticleSet& particles, const GridTopology& topology, ParticleStencils& stencils,
-                         std::size_t begin, std::size_t end) const override {
-    if (stencils.capacity != kBlockCapacity) return;  // general path: built by beginStencils
+  void buildStencilRange(const dem::ParticleSet& particles, const GridTopology& topology, ParticleStencils& out,
+                         std::size_t begin, std::size_t end, std::size_t first) const override {
+    if (out.capacity != kBlockCapacity) return;  // general path: built by beginStencils
     const BlockTables& tables = *tables_;
+    const std::size_t shift = first - begin;  // particle p at entry p + shift (modulo 2^64)
 #if defined(GF_X86_SIMD)
     if (blockPathAvx512.enabled()) {
-      addBlocksAvx512(particles, topology, tables, stencils, begin, end);
+      addBlocksAvx512(particles, topology, tables, out, begin, end, shift);
       return;
     }
 #endif
     ScaledPoints points;
     for (std::size_t p = begin; p < end; ++p) {
       if (!points.scaledFor(particles.radius[p])) points.scale(particles.radius[p]);
-      addBlock(topology, tables, points, particles.position[p], stencils.cell.data() + p * kBlockCapacity,
-               stencils.weight.data() + p * kBlockCapacity, stencils.count[p]);
+      const std::size_t entry = p + shift;
+      addBlock(topology, tables, points, particles.position[p], out.cell.data() + entry * kBlockCapacity,
+               out.weight.data() + entry * kBlockCapacity, out.count[entry]);
     }
   }
 
@@ -359,10 +361,11 @@ class DividedVoidFraction final : public VoidFractionScheme {
   /// with the cell face in one instruction (the same operations per coordinate as splitAxis), the
   /// 8 cells and weights (count x (1/29), the values of weightOf) built in one register each and
   /// the non-empty ones compressed to the front. The same stencil entries as addBlock (entries
-  /// beyond the count are zero instead of leftovers; nothing reads them).
+  /// beyond the count are zero instead of leftovers; nothing reads them), particle p's at entry
+  /// p + entryShift of `stencils`.
   __attribute__((target("avx512f,avx2,popcnt"))) static void addBlocksAvx512(
       const dem::ParticleSet& particles, const GridTopology& t, const BlockTables& tables, ParticleStencils& stencils,
-      std::size_t begin, std::size_t end) {
+      std::size_t begin, std::size_t end, std::size_t entryShift) {
     const AxisOffsets (&axisOffsets)[3] = tables.axis;
     ScaledPoints points;
     __m512d upperPoints[3];  // r u_v of the 8 upper coordinates (v = 1..8) per axis
@@ -433,9 +436,10 @@ class DividedVoidFraction final : public VoidFractionScheme {
         const __m512i count64 = _mm512_cvtepu8_epi64(bytes);
         const __mmask8 nonEmpty = _mm512_test_epi64_mask(count64, count64);
         const __m512d weights = _mm512_mul_pd(_mm512_cvtepi32_pd(_mm256_cvtepu8_epi32(bytes)), weightPerPoint);
-        _mm512_storeu_si512(cellOut + p * kBlockCapacity, _mm512_maskz_compress_epi64(nonEmpty, cells));
-        _mm512_storeu_pd(weightOut + p * kBlockCapacity, _mm512_maskz_compress_pd(nonEmpty, weights));
-        countOut[p] = _mm_popcnt_u32(static_cast<unsigned>(nonEmpty));
+        const std::size_t entry = p + entryShift;  // (stencils at entry p + entryShift)
+        _mm512_storeu_si512(cellOut + entry * kBlockCapacity, _mm512_maskz_compress_epi64(nonEmpty, cells));
+        _mm512_storeu_pd(weightOut + entry * kBlockCapacity, _mm512_maskz_compress_pd(nonEmpty, weights));
+        countOut[entry] = _mm_popcnt_u32(static_cast<unsigned>(nonEmpty));
       }
     }
   }

@@ -27,15 +27,20 @@ class VoidFractionScheme {
 
   /// The same stencils built in pieces, for a consumer that uses each piece right away (the
   /// Coupler's deposit then reads a stencil from cache just after it is written): beginStencils
-  /// sizes `stencils` for `particles` and may build all of them; buildStencilRange then builds
-  /// those of particles [begin, end) (disjoint ranges, any thread, after beginStencils). The
-  /// default builds everything in beginStencils. Same stencils as buildStencils, bit for bit.
-  virtual void beginStencils(const dem::ParticleSet& particles, const GridTopology& topology,
+  /// sizes `stencils` for `particles` (capacity and counts) and either builds all of them
+  /// (returns false) or none (returns true: pieces follow). Then buildStencilRange builds those
+  /// of particles [begin, end) into `out` at entries [first, first + end - begin): into
+  /// `stencils` itself (first = begin), or into a buffer of the same capacity that holds one
+  /// piece (disjoint ranges, any thread, after beginStencils). The default builds everything in
+  /// beginStencils. Same stencils as buildStencils, bit for bit.
+  virtual bool beginStencils(const dem::ParticleSet& particles, const GridTopology& topology,
                              ParticleStencils& stencils) const {
     buildStencils(particles, topology, stencils);
+    return false;
   }
   virtual void buildStencilRange(const dem::ParticleSet& /*particles*/, const GridTopology& /*topology*/,
-                                 ParticleStencils& /*stencils*/, std::size_t /*begin*/, std::size_t /*end*/) const {}
+                                 ParticleStencils& /*out*/, std::size_t /*begin*/, std::size_t /*end*/,
+                                 std::size_t /*first*/) const {}
 };
 
 /// Largest radius in the set (0 for an empty set).
