@@ -225,7 +225,8 @@ class Coupler {
   std::unique_ptr<VoidFractionScheme> scheme_;
   ParticleStencils stencils_;
   // A fused deposit that nothing reads the stencils of afterwards builds each piece into its
-  // thread's buffer (computeVoidFraction); stencils_ then holds the counts' size only.
+  // thread's buffer (computeVoidFraction); stencils_ is then sized for the particles but not
+  // filled (stencilsKept_ false: stencils() throws, fillFluidSources rebuilds them if it needs them).
   std::vector<ParticleStencils> pieceStencils_;
   bool stencilsKept_ = true;
   FluidView lastFluid_;
