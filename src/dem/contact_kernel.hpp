@@ -101,13 +101,14 @@ struct BlockSplit {
   }
 };
 
-/// BlockSplit of the rows of `list` (and of the wall entries, with walls) for a team, equal shares:
-/// a function of the lists (System::threadBlocks). The force loop's split starts from it and then
-/// follows the threads' measured speeds (PartnerBuffers::speed).
+/// BlockSplit of the rows of `list` (and of the wall entries, with walls) for a team. Equal shares
+/// without weights: a function of the lists (System::threadBlocks). The force loop's split starts
+/// from it and then follows the threads' measured speeds (PartnerBuffers::speed as the weights).
 inline void splitRowsAmongThreads(const NeighbourList& list, const WallContactList& wallList, bool withWalls,
-                                  std::size_t n, int team, std::vector<std::size_t>& start) {
+                                  std::size_t n, int team, std::vector<std::size_t>& start,
+                                  const double* weight = nullptr, std::vector<double>* blockCost = nullptr) {
   BlockSplit::compute(list.rowStart.data(), list.touchingStart.size() == n + 1 ? list.touchingStart.data() : nullptr,
-                      withWalls ? wallList.rowStart.data() : nullptr, n, team, start);
+                      withWalls ? wallList.rowStart.data() : nullptr, n, team, start, weight, blockCost);
 }
 
 /// One contribution to a particle's force and torque, kept in sweep order (PartnerBuffers).
@@ -242,9 +243,7 @@ struct PartnerBuffers {
     // its lists for thousands of steps); receivers are found again only where it moved.
     if (listChanged || (adaptive && threads > 1 && sweepsTimed >= kResplitSweeps)) {
       updateSpeeds(threads);
-      BlockSplit::compute(list.rowStart.data(), list.touchingStart.size() == n + 1 ? list.touchingStart.data() : nullptr,
-                          withWalls ? wallList.rowStart.data() : nullptr, n, threads, blockStart, speed.data(),
-                          &blockCost);
+      splitRowsAmongThreads(list, wallList, withWalls, n, threads, blockStart, speed.data(), &blockCost);
       splitOfList = list.version;
       splitOfRows = n;
       sweepTime.assign(static_cast<std::size_t>(threads), SweepTimes{});

@@ -189,17 +189,17 @@ class DividedVoidFraction final : public VoidFractionScheme {
                          std::size_t begin, std::size_t end, std::size_t first) const override {
     if (out.capacity != kBlockCapacity) return;  // general path: built by beginStencils
     const BlockTables& tables = *tables_;
-    const std::size_t shift = first - begin;  // particle p at entry p + shift (modulo 2^64)
+    const std::size_t entryShift = first - begin;  // particle p at entry p + entryShift (modulo 2^64)
 #if defined(GF_X86_SIMD)
     if (blockPathAvx512.enabled()) {
-      addBlocksAvx512(particles, topology, tables, out, begin, end, shift);
+      addBlocksAvx512(particles, topology, tables, out, begin, end, entryShift);
       return;
     }
 #endif
     ScaledPoints points;
     for (std::size_t p = begin; p < end; ++p) {
       if (!points.scaledFor(particles.radius[p])) points.scale(particles.radius[p]);
-      const std::size_t entry = p + shift;
+      const std::size_t entry = p + entryShift;
       addBlock(topology, tables, points, particles.position[p], out.cell.data() + entry * kBlockCapacity,
                out.weight.data() + entry * kBlockCapacity, out.count[entry]);
     }
