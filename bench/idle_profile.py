@@ -46,12 +46,11 @@ def read_samples(path):
 
 
 def waiting(frames):
-    """A sample in a wait: OpenMP runtime (unresolved libgomp addresses), a team barrier."""
+    """A sample in a wait: OpenMP runtime (libgomp's frames, unresolved: "[unknown]"), a team barrier."""
     if not frames:
         return True
     top = frames[0]
-    return (top.startswith("[unknown]") or top == "?" or "gomp" in top.lower() or "TeamBarrier" in top
-            or re.fullmatch(r"0x[0-9a-f]+", top) is not None)
+    return top.startswith("[unknown]") or top == "?" or "gomp" in top.lower() or "TeamBarrier" in top
 
 
 def label(frames, depth):
