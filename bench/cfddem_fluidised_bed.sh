@@ -15,10 +15,8 @@ work=${BENCH_DIR:-/tmp/grainflow_bench_fluidised_bed}
 # set OMP_WAIT_POLICY=passive yourself on a machine busy with other work.
 case_file=$here/cases/cfddem_bubbling_fluidised_bed.yaml
 spin_dir=$work/spinup_${spinup}
-if [ ! -f "$spin_dir/checkpoint.bin" ] || [ "$spin_dir/checkpoint.bin" -ot "$exe" ]; then
-  echo "spin-up to t = $spinup s (not timed) ..."
-  "$exe" run "$case_file" --threads "$threads" --end-time "$spinup" --output "$spin_dir" --overwrite --quiet
-fi
+source "$here/bench/spinup.sh"
+ensure_spinup "$exe" "$spin_dir" "$spinup" "$threads" refresh
 end=$(python3 -c "print($spinup + $duration)")
 echo "timed: t = $spinup ... $end s on $threads thread(s)"
 "$exe" run "$case_file" --threads "$threads" --end-time "$end" --restart "$spin_dir/checkpoint.bin" \

@@ -26,10 +26,8 @@ case_file=$here/cases/cfddem_bubbling_fluidised_bed.yaml
 for exe in "$a" "$b"; do
   [ -x "$exe" ] || { echo "phase_ab: $exe is not an executable" >&2; exit 2; }
 done
-if [ ! -f "$spinup/checkpoint.bin" ]; then
-  echo "spin-up to t = 0.35 s with $a (not timed) ..."
-  "$a" run "$case_file" --threads 2 --end-time 0.35 --output "$spinup" --overwrite --quiet
-fi
+source "$here/bench/spinup.sh"
+ensure_spinup "$a" "$spinup" 0.35 2
 places="{0}"
 [ "$threads" -ge 2 ] && places="{0},{1}"
 work=$(mktemp -d)
