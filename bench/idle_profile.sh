@@ -15,7 +15,7 @@ spinup=${SPINUP_DIR:-/tmp/grainflow_bench_fluidised_bed/spinup_0.35}
 case_file=$here/cases/cfddem_bubbling_fluidised_bed.yaml
 command -v perf >/dev/null || { echo "idle_profile: needs perf (apt-get install linux-perf)" >&2; exit 2; }
 source "$here/bench/spinup.sh"
-ensure_spinup "$exe" "$spinup" 0.35 2
+ensure_spinup "$exe" "$spinup" 0.35
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 OMP_PROC_BIND=true OMP_PLACES="{0},{1}" perf record -q -F "$frequency" --call-graph dwarf,8192 -o "$work/perf.data" \

@@ -27,7 +27,7 @@ for exe in "$a" "$b"; do
   [ -x "$exe" ] || { echo "phase_ab: $exe is not an executable" >&2; exit 2; }
 done
 source "$here/bench/spinup.sh"
-ensure_spinup "$a" "$spinup" 0.35 2
+ensure_spinup "$a" "$spinup" 0.35
 places="{0}"
 [ "$threads" -ge 2 ] && places="{0},{1}"
 work=$(mktemp -d)
