@@ -9,7 +9,8 @@ BM_DemFreeFlight and BM_DemSettledBedScaling on each count.
 Coupled (issue 6; default 0 pairs, each pair takes ~11 minutes on the development VM): M pairs of
 the timed second of the bubbling bed (0.35 -> 1.35 s from the spin-up checkpoint of
 bench/spinup.sh), pinned (OMP_PLACES {0} for one thread, {0},{1} for two), the order swapped
-every pair, with each run's phase shares and checkpoint md5.
+every pair, with each run's phase shares and checkpoint md5, and the phases' speed-ups on two
+threads.
 
 Prints each run as it ends, then one line per target: median, range, the ratio of the medians
 and the range of the pair ratios. The runs take the host as it is: bench/host_check.sh first
@@ -73,8 +74,8 @@ def settled(exe, threads):
 
 
 def timed_window(exe, threads, end, work):
-    """Wall seconds per simulated second, {phase: share %}, the list builds' 'every N steps' and the
-    checkpoint's md5 of one window from the spin-up checkpoint to `end`."""
+    """Wall seconds per simulated second, {phase: its wall seconds per simulated second}, the list
+    builds' 'every N steps' and the checkpoint's md5 of one window from the spin-up checkpoint to `end`."""
     env = dict(os.environ, OMP_PROC_BIND="true", OMP_PLACES="{0}" if threads == 1 else "{0},{1}")
     out_dir = Path(work) / f"timed_{threads}"
     run = subprocess.run([str(exe), "run", str(HERE / "cases/cfddem_bubbling_fluidised_bed.yaml"), "--threads",
@@ -82,25 +83,25 @@ def timed_window(exe, threads, end, work):
                           "--output", str(out_dir), "--overwrite"], env=env, capture_output=True, text=True)
     if run.returncode != 0:
         sys.exit(f"issue_targets: the timed second on {threads} thread(s) failed:\n{run.stdout}{run.stderr}")
-    shares, total, every, in_table = {}, None, None, False
+    phases, total, every, in_table = {}, None, None, False
     for line in run.stdout.splitlines():
         if line.startswith("phase"):
             in_table = True
         elif in_table and line.startswith("total"):
             total, in_table = float(line.split()[1]), False
         elif in_table and line.strip():
-            *name, _, share = line.split()
-            shares[" ".join(name)] = float(share.rstrip("%"))
+            *name, seconds, _ = line.split()
+            phases[" ".join(name)] = float(seconds) / (end - SPINUP_END)
         elif line.startswith("neighbour lists"):
             every = re.search(r"every ([0-9.]+) steps", line).group(1)
     if total is None:
         sys.exit(f"issue_targets: no timing table in the output of the timed second:\n{run.stdout}")
     md5 = hashlib.md5((out_dir / "checkpoint.bin").read_bytes()).hexdigest()
-    return total / (end - SPINUP_END), shares, every, md5
+    return total / (end - SPINUP_END), phases, every, md5
 
 
 def summary(values):
-    return f"median {statistics.median(values):.1f} ({min(values):.1f}-{max(values):.1f}, {len(values)} runs)"
+    return f"median {statistics.median(values):.1f} ({min(values):.1f}-{max(values):.1f}, {len(values)} run{'s' if len(values) > 1 else ''})"
 
 
 def verdict(met):
@@ -139,15 +140,17 @@ def main():
               f" {tiles} ns, {min(tile_bytes):.0f}-{max(tile_bytes):.0f} B", flush=True)
 
     coupled = {1: [], 2: []}
+    phase_seconds = {1: [], 2: []}  # per run: {phase: s per simulated second}
     if args.coupled_pairs > 0:
         subprocess.run(["bash", "-c", 'source "$1"; ensure_spinup "$2" "$3" "$4"', "spinup",
                         str(HERE / "bench/spinup.sh"), str(exe), str(SPINUP_DIR), str(SPINUP_END)], check=True)
         with tempfile.TemporaryDirectory() as work:
             for pair in range(args.coupled_pairs):
                 for threads in (1, 2) if pair % 2 == 0 else (2, 1):
-                    seconds, shares, every, md5 = timed_window(exe, threads, args.bed_end, work)
+                    seconds, phases, every, md5 = timed_window(exe, threads, args.bed_end, work)
                     coupled[threads].append(seconds)
-                    split = ", ".join(f"{name} {share:.1f} %" for name, share in shares.items())
+                    phase_seconds[threads].append(phases)
+                    split = ", ".join(f"{name} {100 * t / seconds:.1f} %" for name, t in phases.items())
                     print(f"bubbling bed, pair {pair + 1}, {threads} thread(s): {seconds:.1f} s per simulated "
                           f"second (md5 {md5[:8]}; a list build every {every} steps): {split}", flush=True)
 
@@ -159,7 +162,7 @@ def main():
     ratio = statistics.median(ns[1]) / statistics.median(ns[2])
     row(f"settled bed <= {SETTLED_NS:.0f} ns, 1 thread", f"{summary(ns[1])} ns, {sum(v <= SETTLED_NS for v in ns[1])} "
         f"under: {verdict(statistics.median(ns[1]) <= SETTLED_NS)}")
-    row(f"settled bed >= x{SPEEDUP}, 2 threads", f"{summary(ns[2])} ns: x{ratio:.2f} on the medians, "
+    row(f"settled bed >= x{SPEEDUP}, 2 threads", f"{summary(ns[2])} ns: x{ratio:.3f} on the medians, "
         f"x{min(pair_ratios):.2f}-{max(pair_ratios):.2f} pair by pair: {verdict(ratio >= SPEEDUP)}")
     flights = [free[t]["ns_per_particle_step"] for t in (1, 2)]
     row(f"free flight <= {FREE_FLIGHT_NS:.0f} ns", f"{flights[0]:.1f} / {flights[1]:.1f} ns: "
@@ -172,8 +175,14 @@ def main():
         bed_pairs = [a / b for a, b in zip(coupled[1], coupled[2])]
         row(f"bubbling bed <= {BED_SECONDS:.0f} s, 1 thread", f"{summary(coupled[1])} s: "
             f"{verdict(statistics.median(coupled[1]) <= BED_SECONDS)}")
-        row(f"bubbling bed >= x{SPEEDUP}, 2 threads", f"{summary(coupled[2])} s: x{bed_ratio:.2f} on the medians, "
+        row(f"bubbling bed >= x{SPEEDUP}, 2 threads", f"{summary(coupled[2])} s: x{bed_ratio:.3f} on the medians, "
             f"x{min(bed_pairs):.2f}-{max(bed_pairs):.2f} pair by pair: {verdict(bed_ratio >= SPEEDUP)}")
+        speedups = []
+        for name in phase_seconds[1][0]:
+            ratios = [one[name] / two[name] for one, two in zip(phase_seconds[1], phase_seconds[2]) if two.get(name)]
+            if ratios and name not in ("I/O", "other"):
+                speedups.append(f"{name} x{min(ratios):.2f}-{max(ratios):.2f}")
+        row("  phases on 2 threads (pair by pair)", ", ".join(speedups))
 
 
 if __name__ == "__main__":
