@@ -3,14 +3,14 @@
 
   python3 bench/issue_targets.py [--rounds N] [--coupled-pairs M] [--bed-end T] [--exe EXE]
 
-DEM (issue 4): N rounds (default 4) of BM_DemSettledBed on 1 and on 2 threads, the order swapped
-every round (on a host whose speed drifts, neither count always runs first), then
+DEM (issue 4): N rounds (default 4; 0: none) of BM_DemSettledBed on 1 and on 2 threads, the
+order swapped every round (on a host whose speed drifts, neither count always runs first), then
 BM_DemFreeFlight and BM_DemSettledBedScaling on each count.
 Coupled (issue 6; default 0 pairs, each pair takes ~11 minutes on the development VM): M pairs of
 the timed second of the bubbling bed (0.35 -> 1.35 s from the spin-up checkpoint of
-bench/spinup.sh), pinned (OMP_PLACES {0} for one thread, {0},{1} for two), the order swapped
-every pair, with each run's phase shares and checkpoint md5, and the phases' speed-ups on two
-threads.
+bench/spinup.sh, written again when older than EXE), pinned (OMP_PLACES {0} for one thread,
+{0},{1} for two), the order swapped every pair, with each run's phase shares and checkpoint md5,
+and the phases' speed-ups on two threads.
 
 Prints each run as it ends, then one line per target: median, range, the ratio of the medians
 and the range of the pair ratios. The runs take the host as it is: bench/host_check.sh first
@@ -27,7 +27,8 @@ import tempfile
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent.parent
-SPINUP_DIR = Path("/tmp/grainflow_bench_fluidised_bed/spinup_0.35")
+# (shared with bench/idle_profile.sh and bench/phase_ab.sh, which take SPINUP_DIR too)
+SPINUP_DIR = Path(os.environ.get("SPINUP_DIR", "/tmp/grainflow_bench_fluidised_bed/spinup_0.35"))
 SPINUP_END = 0.35
 
 # issue 4: settled bed <= 60 ns on 1 thread, >= x1.7 on 2; free flight <= 10 ns; <= 400 B per particle
@@ -101,7 +102,8 @@ def timed_window(exe, threads, end, work):
 
 
 def summary(values):
-    return f"median {statistics.median(values):.1f} ({min(values):.1f}-{max(values):.1f}, {len(values)} run{'s' if len(values) > 1 else ''})"
+    runs = f"{len(values)} run{'s' if len(values) > 1 else ''}"
+    return f"median {statistics.median(values):.1f} ({min(values):.1f}-{max(values):.1f}, {runs})"
 
 
 def verdict(met):
@@ -110,7 +112,8 @@ def verdict(met):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--rounds", type=int, default=4, help="settled-bed pairs (1 and 2 threads)")
+    parser.add_argument("--rounds", type=int, default=4,
+                        help="settled-bed pairs (1 and 2 threads); 0: no DEM benchmark at all")
     parser.add_argument("--coupled-pairs", type=int, default=0, help="pairs of the bubbling bed's timed second")
     parser.add_argument("--bed-end", type=float, default=1.35,
                         help="end of the timed window, s (the issue's second: 1.35; shorter to try the script)")
@@ -130,7 +133,7 @@ def main():
             print(f"settled bed, round {r + 1}, {threads} thread(s): {value:.1f} ns, {bytes_per_particle:.0f} B",
                   flush=True)
     free, scaling = {}, {}
-    for threads in (1, 2):
+    for threads in (1, 2) if args.rounds > 0 else ():
         (free[threads],) = bench(exe, "BM_DemFreeFlight/", threads).values()
         scaling[threads] = bench(exe, "BM_DemSettledBedScaling/", threads)
         tiles = " / ".join(f"{c['ns_per_particle_step']:.0f}" for c in scaling[threads].values())
@@ -142,7 +145,7 @@ def main():
     coupled = {1: [], 2: []}
     phase_seconds = {1: [], 2: []}  # per run: {phase: s per simulated second}
     if args.coupled_pairs > 0:
-        subprocess.run(["bash", "-c", 'source "$1"; ensure_spinup "$2" "$3" "$4"', "spinup",
+        subprocess.run(["bash", "-c", 'source "$1"; ensure_spinup "$2" "$3" "$4" refresh', "spinup",
                         str(HERE / "bench/spinup.sh"), str(exe), str(SPINUP_DIR), str(SPINUP_END)], check=True)
         with tempfile.TemporaryDirectory() as work:
             for pair in range(args.coupled_pairs):
@@ -158,18 +161,19 @@ def main():
         print(f"{target:<36} {measured}")
 
     row("\ntarget (issues 4 and 6)", "measured")
-    pair_ratios = [a / b for a, b in zip(ns[1], ns[2])]
-    ratio = statistics.median(ns[1]) / statistics.median(ns[2])
-    row(f"settled bed <= {SETTLED_NS:.0f} ns, 1 thread", f"{summary(ns[1])} ns, {sum(v <= SETTLED_NS for v in ns[1])} "
-        f"under: {verdict(statistics.median(ns[1]) <= SETTLED_NS)}")
-    row(f"settled bed >= x{SPEEDUP}, 2 threads", f"{summary(ns[2])} ns: x{ratio:.3f} on the medians, "
-        f"x{min(pair_ratios):.2f}-{max(pair_ratios):.2f} pair by pair: {verdict(ratio >= SPEEDUP)}")
-    flights = [free[t]["ns_per_particle_step"] for t in (1, 2)]
-    row(f"free flight <= {FREE_FLIGHT_NS:.0f} ns", f"{flights[0]:.1f} / {flights[1]:.1f} ns: "
-        f"{verdict(max(flights) <= FREE_FLIGHT_NS)}")
-    largest = max(memory[1] + memory[2])
-    row(f"memory <= {BYTES:.0f} B per particle", f"{min(memory[1] + memory[2]):.0f}-{largest:.0f} B "
-        f"(settled bed and tiles): {verdict(largest <= BYTES)}")
+    if args.rounds > 0:
+        pair_ratios = [a / b for a, b in zip(ns[1], ns[2])]
+        ratio = statistics.median(ns[1]) / statistics.median(ns[2])
+        row(f"settled bed <= {SETTLED_NS:.0f} ns, 1 thread", f"{summary(ns[1])} ns, "
+            f"{sum(v <= SETTLED_NS for v in ns[1])} under: {verdict(statistics.median(ns[1]) <= SETTLED_NS)}")
+        row(f"settled bed >= x{SPEEDUP}, 2 threads", f"{summary(ns[2])} ns: x{ratio:.3f} on the medians, "
+            f"x{min(pair_ratios):.2f}-{max(pair_ratios):.2f} pair by pair: {verdict(ratio >= SPEEDUP)}")
+        flights = [free[t]["ns_per_particle_step"] for t in (1, 2)]
+        row(f"free flight <= {FREE_FLIGHT_NS:.0f} ns", f"{flights[0]:.1f} / {flights[1]:.1f} ns: "
+            f"{verdict(max(flights) <= FREE_FLIGHT_NS)}")
+        largest = max(memory[1] + memory[2])
+        row(f"memory <= {BYTES:.0f} B per particle", f"{min(memory[1] + memory[2]):.0f}-{largest:.0f} B "
+            f"(settled bed and tiles): {verdict(largest <= BYTES)}")
     if coupled[1] and coupled[2]:
         bed_ratio = statistics.median(coupled[1]) / statistics.median(coupled[2])
         bed_pairs = [a / b for a, b in zip(coupled[1], coupled[2])]
