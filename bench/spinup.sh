@@ -1,5 +1,6 @@
 # Sourced by the bubbling-bed scripts (bench/cfddem_fluidised_bed.sh, bench/idle_profile.sh,
-# bench/phase_ab.sh): the spin-up checkpoint their timed windows restart from.
+# bench/phase_ab.sh; bench/issue_targets.py calls it through bash): the spin-up checkpoint their
+# timed windows restart from.
 #   ensure_spinup EXE DIR END_TIME [refresh]
 # runs cases/cfddem_bubbling_fluidised_bed.yaml with EXE from t = 0 to END_TIME (not timed) and
 # writes DIR/checkpoint.bin, unless that file exists; with "refresh", also when it is older than EXE.
