@@ -644,20 +644,24 @@ struct BlockSweep {
 
   /// Adds the evaluated pairs of the batch in list order: to their row's sum (b.rowForce/Torque,
   /// added to the row's particle in finishRun) and to the partners.
+  template <bool Logs>
   [[gnu::always_inline]] void scatterRun() {
     const bool arm = batch->template torqueArm<R>();
-    if (receiving) {
-      if (arm) scatterRunOf<true, true>();
-      else scatterRunOf<false, true>();
+    if constexpr (!Logs) {
+      if (arm) scatterRunOf<true, false, false>();
+      else scatterRunOf<false, false, false>();
+    } else if (receiving) {
+      if (arm) scatterRunOf<true, true, true>();
+      else scatterRunOf<false, true, true>();
     } else {
-      if (arm) scatterRunOf<true, false>();
-      else scatterRunOf<false, false>();
+      if (arm) scatterRunOf<true, false, true>();
+      else scatterRunOf<false, false, true>();
     }
   }
   /// TorqueArm: ContactBatch::torqueArm (ti = 0 - y, tj = -y from y = r n x F_t, the bits of the
   /// general formulas). Deferring: this block has receiving rows (`receiving`), whose contributions
-  /// are logged (PartnerBuffers).
-  template <bool TorqueArm, bool Deferring>
+  /// are logged (PartnerBuffers). Logs: partners in later blocks may be listed (logged, `outgoing`).
+  template <bool TorqueArm, bool Deferring, bool Logs>
   [[gnu::always_inline]] void scatterRunOf() {
     ContactBatch& b = *batch;
     Vec3* const f = force;
@@ -682,7 +686,7 @@ struct BlockSweep {
       h[k] = Vec3{b.hx[e], b.hy[e], b.hz[e]};
       if constexpr (R == RollingLaw::Epsd) rollingHistory[k] = Vec3{b.rhx[e], b.rhy[e], b.rhz[e]};
       // (logged: -fe is added where one thread subtracts fe; x + (-y) and x - y are the same bits)
-      if (j >= blockEnd) {
+      if (Logs && j >= blockEnd) {
         outgoing->push_back({-fe, tqj, j});
       } else if (Deferring && receiving[j]) {
         deferred->push_back({-fe, tqj, j});
@@ -694,11 +698,12 @@ struct BlockSweep {
   }
 
   /// Completes row i: its own sum, its wall contacts and (first block) its kick.
+  template <bool Logs>
   [[gnu::always_inline]] void finishRow(std::size_t i, const Vec3& fi, const Vec3& tqi) {
-    if (rowStart[i] < rowStart[i + 1]) addToRow(i, fi, tqi);
+    if (rowStart[i] < rowStart[i + 1]) addToRow<Logs>(i, fi, tqi);
     if (withWalls && wallRowStart[i] != wallRowStart[i + 1])
       wallContactsOfParticle<N, R, C>(*particles, *wallList, *table, *walls, dt, i,
-                                      [&](const Vec3& f, const Vec3& t) { addToRow(i, f, t); });
+                                      [&](const Vec3& f, const Vec3& t) { addToRow<Logs>(i, f, t); });
     // Half list: all contributions to i come from rows <= i; unless a row of an earlier block
     // lists i (`receiving`), none come from other threads, so the force is final here and the kick
     // can use it while it is in cache.
@@ -706,8 +711,10 @@ struct BlockSweep {
   }
 
   /// Adds a contribution to row i's own force and torque, or logs it (a receiving row: PartnerBuffers).
+  /// Logs false: nothing is logged (a team of one), and the loops that call it hold no call.
+  template <bool Logs>
   [[gnu::always_inline]] void addToRow(std::size_t i, const Vec3& f, const Vec3& t) {
-    if (receiving && receiving[i]) {
+    if (Logs && receiving && receiving[i]) {
       deferred->push_back({f, t, static_cast<std::uint32_t>(i)});
     } else {
       force[i] += f;
@@ -834,6 +841,7 @@ struct BlockSweep {
   }
 
   /// Adds the evaluated wall contacts in list order to their particles and records them.
+  template <bool Logs>
   [[gnu::always_inline]] void scatterWalls(std::size_t rb) {
     const WallBatch& b = *wallBatch;
     WallContactList& list = *wallList;
@@ -845,7 +853,7 @@ struct BlockSweep {
       const std::size_t i = rb + b.row[e];
       const std::uint32_t k = b.entry[e];
       const Vec3 f = loadLane(b.fx, b.fy, b.fz, e);
-      addToRow(i, f, Vec3{b.tx[e], b.ty[e], b.tz[e]});
+      addToRow<Logs>(i, f, Vec3{b.tx[e], b.ty[e], b.tz[e]});
       listForce[k] = f;
       listPoint[k] = {b.px[e], b.py[e], b.pz[e]};
       h[k] = {b.hx[e], b.hy[e], b.hz[e]};
@@ -856,21 +864,23 @@ struct BlockSweep {
   /// Completes a run of rows [rb, re) whose pairs were all scattered: each row's sum, walls, kick.
   /// Batched walls: sums of all rows, then the wall contacts, then the kicks (each touches only
   /// its own particle: the same order of additions per particle as row by row).
+  template <bool Logs>
   [[gnu::always_inline]] void finishRun(std::size_t rb, std::size_t re, bool wallsGathered) {
     const ContactBatch& b = *batch;
     if (!wallsGathered) {
-      for (std::size_t i = rb; i < re; ++i) finishRow(i, b.rowForce[i - rb], b.rowTorque[i - rb]);
+      for (std::size_t i = rb; i < re; ++i) finishRow<Logs>(i, b.rowForce[i - rb], b.rowTorque[i - rb]);
       return;
     }
     for (std::size_t i = rb; i < re; ++i)
-      if (rowStart[i] < rowStart[i + 1]) addToRow(i, b.rowForce[i - rb], b.rowTorque[i - rb]);
-    scatterWalls(rb);
+      if (rowStart[i] < rowStart[i + 1]) addToRow<Logs>(i, b.rowForce[i - rb], b.rowTorque[i - rb]);
+    scatterWalls<Logs>(rb);
     if (kickHere) kickRange(rb, re);
   }
 
   /// The rows [rb, re) (candidates [base, base + count), count <= capacity): owners, gather,
   /// evaluation, body forces up to the last partner, scatter, completion. The additions to each
   /// force happen in the same order as one row and one contact at a time.
+  template <bool Logs>
   void processRun(std::size_t rb, std::size_t re, std::uint32_t maxPartner) {
     ContactBatch& b = *batch;
     const std::uint32_t base = rowStart[rb], count = rowStart[re] - base;
@@ -901,11 +911,12 @@ struct BlockSweep {
     if (wallsGathered) evaluateWallBatch<N, R, C>(*wallBatch, coefficients, dt);
     initialiseUpTo(std::min<std::size_t>(end, std::max<std::size_t>(re, std::size_t{maxPartner} + 1)));
     for (std::size_t r = 0; r < re - rb; ++r) b.rowForce[r] = b.rowTorque[r] = Vec3{};
-    scatterRun();
-    finishRun(rb, re, wallsGathered);
+    scatterRun<Logs>();
+    finishRun<Logs>(rb, re, wallsGathered);
   }
 
   /// A row longer than a batch (a large particle among small ones): evaluated in pieces.
+  template <bool Logs>
   void processLongRow(std::size_t i) {
     ContactBatch& b = *batch;
     const std::uint32_t first = rowStart[i], last = rowStart[i + 1];
@@ -918,19 +929,25 @@ struct BlockSweep {
       b.uniform = true;
       gatherRun(i, from, std::min(last - from, capacity), 0);
       evaluateBatch<N, R, C>(b, coefficients, dt);
-      scatterRun();
+      scatterRun<Logs>();
     }
-    finishRun(i, i + 1, false);
+    finishRun<Logs>(i, i + 1, false);
   }
 
   void run() {
-    if (end - begin >= kPrefetchFromRows) runRows<true, false>();
-    else if (laterBlocks) runRows<false, true>();
-    else runRows<false, false>();
+    // A team of one logs nothing (no later blocks, no receiving rows): its loops are compiled
+    // without the logging calls. Present but never taken, those calls made the settled bed 3-4 %
+    // slower on one thread (probably: a call may write any memory, so the loops reload more).
+    if (!laterBlocks && !receiving) {
+      if (end - begin >= kPrefetchFromRows) runRows<true, false, false>();
+      else runRows<false, false, false>();
+    } else if (end - begin >= kPrefetchFromRows) runRows<true, false, true>();
+    else if (laterBlocks) runRows<false, true, true>();
+    else runRows<false, false, true>();
   }
 
   /// Rows in runs of at most kCapacity candidates and kCapacity rows.
-  template <bool Prefetch, bool PrefetchLaterBlock>
+  template <bool Prefetch, bool PrefetchLaterBlock, bool Logs>
   void runRows() {
     constexpr std::uint32_t capacity = ContactBatch::kCapacity;
     std::size_t i = begin;
@@ -943,7 +960,7 @@ struct BlockSweep {
         if (withWalls && wallRowStart[i] != wallRowStart[i + 1]) {
           // No neighbours but wall entries: complete the row at once.
           initialiseUpTo(i + 1);
-          finishRow(i, Vec3{}, Vec3{});
+          finishRow<Logs>(i, Vec3{}, Vec3{});
           ++i;
           continue;
         }
@@ -964,7 +981,7 @@ struct BlockSweep {
         continue;
       }
       if (length > capacity) {
-        processLongRow(i);
+        processLongRow<Logs>(i);
         ++i;
         continue;
       }
@@ -977,7 +994,7 @@ struct BlockSweep {
         maxPartner = std::max(maxPartner, partner[rowStart[re + 1] - 1]);
         ++re;
       }
-      processRun(i, re, maxPartner);
+      processRun<Logs>(i, re, maxPartner);
       i = re;
     }
     initialiseUpTo(end);
