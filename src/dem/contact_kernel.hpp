@@ -936,7 +936,7 @@ struct BlockSweep {
 
   void run() {
     // A team of one logs nothing (no later blocks, no receiving rows): its loops are compiled
-    // without the logging calls. Present but never taken, those calls made the settled bed 3-4 %
+    // without the logging calls. Present but never taken, those calls made the settled bed ~2.5 %
     // slower on one thread (probably: a call may write any memory, so the loops reload more).
     if (!laterBlocks && !receiving) {
       if (end - begin >= kPrefetchFromRows) runRows<true, false, false>();
