@@ -24,21 +24,17 @@ if [ "$(nproc)" -lt 2 ]; then
   echo "host_check: needs two CPUs, this machine has $(nproc)" >&2
   exit 1
 fi
-# ns per particle-step of one benchmark run, pinned to CPU $2
-ns_per_step() {
-  taskset -c "$2" "$exe" bench "$1/" --threads 1 2>/dev/null | awk -v name="$1/" '
-    /^Benchmark/ { for (i = 1; i <= NF; ++i) if ($i == "ns_per_particle_step") column = i - 4 }
-    index($0, name) == 1 { value = $(6 + column); sub(/[a-zA-Z]+$/, "", value); print value }'
-}
+# ns_per_step EXE BENCHMARK CPU: one benchmark run on one thread pinned to CPU
+source "$here/bench/ns_per_step.sh"
 both0=$(mktemp)  # the CPU-0 figure of the concurrent pair
 trap 'rm -f "$both0"' EXIT
 printf '%-18s %8s %8s %13s %13s %15s %8s\n' "ns/particle-step" "alone0" "alone1" "together0" "together1" "together/alone" ceiling
 for bench in BM_DemFreeFlight BM_DemSettledBed; do
-  a0=$(ns_per_step "$bench" 0)
-  a1=$(ns_per_step "$bench" 1)
-  ns_per_step "$bench" 0 >"$both0" &
+  a0=$(ns_per_step "$exe" "$bench/" 0)
+  a1=$(ns_per_step "$exe" "$bench/" 1)
+  ns_per_step "$exe" "$bench/" 0 >"$both0" &
   pid=$!
-  b1=$(ns_per_step "$bench" 1)
+  b1=$(ns_per_step "$exe" "$bench/" 1)
   wait "$pid"
   b0=$(cat "$both0")
   read -r ratio ceiling < <(python3 -c "print(f'{($b0 + $b1) / ($a0 + $a1):.2f} {($a0 + $a1) / max($b0, $b1):.2f}')")

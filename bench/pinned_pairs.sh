@@ -3,8 +3,8 @@
 # pinned to CPU 0 and the same benchmark of build B pinned to CPU 1 at the same time, then the
 # other way round, and prints B / A per round as sqrt((B@0 * B@1) / (A@0 * A@1)): both builds
 # see the same minutes and each CPU once, so the drift of the host and the difference between
-# the CPUs cancel. Session 38 found with it a 3-4 % one-thread slowdown of the settled bed that
-# sessions of alternated runs had not resolved (concurrent pairs 0.953-0.986, every round below 1).
+# the CPUs cancel. Session 38 measured with it the ~2.5 % one-thread gain of the team-of-one
+# contact sweep, which alternated runs had not resolved (12 rounds 0.953-1.039, 11 below 1).
 #   bash bench/pinned_pairs.sh GRAINFLOW_A GRAINFLOW_B [ROUNDS] [BENCHMARK]
 #   (defaults 4, BM_DemSettledBed/; GRAINFLOW_X is a build's grainflow executable, whose
 #   bench/grainflow_bench it runs)
@@ -26,18 +26,13 @@ for exe in "$a" "$b"; do
 done
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-# ns per particle-step of one run of build $1 pinned to CPU $2, written to file $3
-ns_per_step() {
-  taskset -c "$2" "$1" bench "$benchmark" --threads 1 2>/dev/null | awk -v name="$benchmark" '
-    /^Benchmark/ { for (i = 1; i <= NF; ++i) if ($i == "ns_per_particle_step") column = i + 2 }
-    index($0, name) == 1 && column { value = $column; gsub(/[^0-9.]/, "", value); print value }' >"$3"
-}
+source "$(dirname "$0")/ns_per_step.sh"
 for ((r = 1; r <= rounds; ++r)); do
-  ns_per_step "$a" 0 "$work/a0" &
-  ns_per_step "$b" 1 "$work/b1"
+  ns_per_step "$a" "$benchmark" 0 >"$work/a0" &
+  ns_per_step "$b" "$benchmark" 1 >"$work/b1"
   wait
-  ns_per_step "$b" 0 "$work/b0" &
-  ns_per_step "$a" 1 "$work/a1"
+  ns_per_step "$b" "$benchmark" 0 >"$work/b0" &
+  ns_per_step "$a" "$benchmark" 1 >"$work/a1"
   wait
   echo "$(cat "$work/a0") $(cat "$work/b1") $(cat "$work/b0") $(cat "$work/a1")"
 done | awk '
