@@ -79,6 +79,7 @@ class BinaryReader {
  private:
   void take(void* out, std::size_t n) {
     if (n > size_ - pos_) throw CheckpointError("checkpoint is truncated (ran past its end while reading)");
+    if (n == 0) return;  // an empty vector's data() may be null, and memcpy(nullptr, ..., 0) is UB
     std::memcpy(out, data_ + pos_, n);
     pos_ += n;
   }
