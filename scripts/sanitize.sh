@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The test suite under AddressSanitizer and UndefinedBehaviorSanitizer (GCC, -O2 -g), in
+# The test suite under AddressSanitizer and UndefinedBehaviorSanitizer (GCC, -O2 -g), with the
+# standard library's own checks (_GLIBCXX_ASSERTIONS: vector/array indices against size()), in
 # build-sanitize/ (GRAINFLOW_SANITIZE_DIR). Any out-of-bounds access, leak or undefined behaviour
 # the tests reach fails the test that reached it (-fno-sanitize-recover: no error is only logged).
 # Not part of CI: on 2 cores the build takes ~20 min and the suite ~10 min (the quick validation
@@ -9,6 +10,7 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 DIR=${GRAINFLOW_SANITIZE_DIR:-build-sanitize}
 FLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
+FLAGS+=" -D_GLIBCXX_ASSERTIONS"
 cmake -S . -B "$DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGRAINFLOW_BUILD_BENCH=OFF \
   -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined"
 cmake --build "$DIR" -j "$(nproc)"
