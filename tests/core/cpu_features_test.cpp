@@ -60,7 +60,9 @@ TEST(CpuFeatures, VectorFormFollowsTheCpuAndTheSwitch) {
 TEST(CpuFeatures, PrefetchForWriteMatchesTheKernelsFlagAndChangesNothing) {
 #if defined(GF_X86_SIMD)
   const std::set<std::string> flags = procCpuFlags();
-  if (!flags.empty()) EXPECT_EQ(gf::cpuHasPrefetchW(), flags.count("3dnowprefetch") > 0);
+  if (!flags.empty()) {
+    EXPECT_EQ(gf::cpuHasPrefetchW(), flags.count("3dnowprefetch") > 0);
+  }
 #else
   EXPECT_FALSE(gf::cpuHasPrefetchW());
 #endif

@@ -130,7 +130,9 @@ void expectDividedPathsAgree(const dem::ParticleSet& particles, const CartesianG
     scheme->buildStencils(particles, t, generic);
     allowDividedAvx512(true);
     ASSERT_EQ(vector.capacity, generic.capacity);
-    if (expectedCapacity > 0) ASSERT_EQ(vector.capacity, expectedCapacity);
+    if (expectedCapacity > 0) {
+      ASSERT_EQ(vector.capacity, expectedCapacity);
+    }
     ASSERT_EQ(vector.count, generic.count);
     for (std::size_t p = 0; p < generic.count.size(); ++p)
       for (int e = 0; e < generic.count[p]; ++e) {
@@ -404,7 +406,9 @@ TEST(FastPaths, SumsAndDepositsFollowTheGivenParticleSplit) {
   const std::vector<double> byEqual = deposit(nullptr, nullptr);
   omp_set_num_threads(saved);
   for (int who : depositedBy) ASSERT_GE(who, 0);
-  if (saved >= 2) EXPECT_EQ(depositedBy[4499], depositedBy[0]);
+  if (saved >= 2) {
+    EXPECT_EQ(depositedBy[4499], depositedBy[0]);
+  }
   double total = 0.0;
   for (std::size_t q = 0; q < cells; ++q) {
     EXPECT_NEAR(bySplit[q], byEqual[q], 1e-15) << q;
