@@ -65,7 +65,7 @@ bool yIsColumnValue(const Quantity& q) {
 std::string writePlotSpec(const Item& item, const Quantity& q, const std::vector<RunPoint>& runs,
                           const std::vector<Extracted>& extracted, const std::vector<Row>& rows, const std::string& itemDirectory,
                           std::vector<std::string>& specs) {
-  const std::string png = (fs::path(itemDirectory) / fmt::format("{}_{}.png", item.name, slug(q.name))).string();
+  std::string png = (fs::path(itemDirectory) / fmt::format("{}_{}.png", item.name, slug(q.name))).string();
   std::vector<PlotSeries> series;
   std::string xLabel = q.plot.xLabel, yLabel = q.plot.yLabel, note;
   PlotSpec axes = q.plot;

@@ -103,7 +103,7 @@ Extracted extract(const Quantity& q, const std::string& runDirectory) {
 std::vector<Row> compareQuantity(const Item& item, const Quantity& q, const std::vector<RunPoint>& runs,
                                  const std::vector<Extracted>& extracted, const std::vector<std::string>& runFailures) {
   std::vector<Row> rows;
-  const std::string opName = operationName(q.operation == Operation::Ratio ? q.operation : q.operation);
+  const std::string opName = operationName(q.operation);
   if (q.across != AcrossRuns::None) {
     Row row{item.name, fmt::format("runs over {}", item.sweepKey), q.name, acrossRunsName(q.across) + " of " + opName, std::nullopt, q.tolerance, ""};
     std::vector<double> xs, ys;

@@ -124,7 +124,7 @@ class Map {
     return Map(node_[key], file_, keyPath(key));
   }
   std::string choice(const std::string& key, const std::vector<std::string>& allowed, const std::string& fallback) const {
-    const std::string value = text(key, fallback);
+    std::string value = text(key, fallback);  // not const: returned by move
     if (std::find(allowed.begin(), allowed.end(), value) == allowed.end())
       fail(key, "'" + value + "'", fmt::format("one of: {}", fmt::join(allowed, ", ")));
     return value;

@@ -409,7 +409,7 @@ std::string Params::readChoice(const Key& k, const std::vector<std::string>& all
     return allowed.empty() ? std::string() : allowed.front();  // documentation mode, required key
   }
   if (!n->IsScalar()) fail(k.name, describeNode(*n), "one of: " + joinNames(allowed));
-  const std::string v = n->Scalar();
+  std::string v = n->Scalar();  // not const: returned by move
   if (std::find(allowed.begin(), allowed.end(), v) == allowed.end()) {
     const std::string suggestion = closestMatch(v, allowed);
     fail(k.name, fmt::format("'{}'{}", v, suggestion.empty() ? "" : fmt::format(" (did you mean '{}'?)", suggestion)),

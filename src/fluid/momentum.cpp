@@ -608,7 +608,6 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
                       }).first;
     if (std::sqrt(ss) <= tol) {
       parallelForElements(n, [&](std::int64_t q) { X[q] += alpha * Y[q]; });
-      rnorm = std::sqrt(ss);
       break;
     }
     fillVelocityGhosts(z, c, bc_, GhostMode::Homogeneous);

@@ -246,7 +246,7 @@ class DividedVoidFraction final : public VoidFractionScheme {
       return cells == t.grid.cells && ghosts == t.grid.ghosts && periodic == t.periodic;
     }
     static std::size_t extent(const GridTopology& t, int a) {
-      return static_cast<std::size_t>(t.grid.cells[a] + 2 * t.grid.ghosts);
+      return static_cast<std::size_t>(t.grid.cells[a]) + 2 * static_cast<std::size_t>(t.grid.ghosts);
     }
   };
   // built by beginStencils (one thread), only read by buildStencilRange (any thread)

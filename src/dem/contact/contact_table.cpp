@@ -122,7 +122,7 @@ ContactTable::ContactTable(Params& root) {
   cohesionLaw_ = cohesion->law();
   rollingDamping_ = rolling->dampingRatio();
   const PairProperties defaults = readPairProperties(c, PairProperties{});
-  table_.assign(static_cast<std::size_t>(count_ * count_), PairCoefficients{});
+  table_.assign(static_cast<std::size_t>(count_) * static_cast<std::size_t>(count_), PairCoefficients{});
   for (int a = 0; a < count_; ++a)
     for (int b = 0; b < count_; ++b) computePair(a, b, materialPair(materials_[a], materials_[b], defaults));
   for (Params& pp : c.list({"pairs", "-", "parameters of specific material pairs (override the defaults above)"})) {
@@ -164,7 +164,7 @@ void ContactTable::configure(std::vector<Material> materials, NormalLaw law, Rol
   Params p = Params::loadString(fmt::format("normal_stiffness: {}\n", hookeStiffness), "(configure)");
   lawModel_ = Registry<ContactLawModel>::instance().createByName(
       law == NormalLaw::Hooke ? "hooke" : "hertz_mindlin", p);
-  table_.assign(static_cast<std::size_t>(count_ * count_), PairCoefficients{});
+  table_.assign(static_cast<std::size_t>(count_) * static_cast<std::size_t>(count_), PairCoefficients{});
   for (int a = 0; a < count_; ++a)
     for (int b = 0; b < count_; ++b) computePair(a, b, allPairs);
 }
