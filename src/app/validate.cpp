@@ -252,6 +252,7 @@ int runValidate(const ValidateOptions& options) {
   }
   setThreadCount(options.threads);
   std::vector<Item> items;
+  items.reserve(selected.size());
   for (const std::string& name : selected) items.push_back(loadItem((fs::path(validationDirectory) / name).string()));
   ValidationRun run(options, std::move(items), fs::absolute(validationDirectory).lexically_normal().parent_path());
   run.plan();

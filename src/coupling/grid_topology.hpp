@@ -52,8 +52,8 @@ struct GridTopology {
   /// Flat index of interior cell (i, j, k) in any cell-centred Field on this grid.
   std::size_t flat(int i, int j, int k) const {
     const int g = grid.ghosts;
-    const std::size_t ex = static_cast<std::size_t>(grid.cells[0] + 2 * g);
-    const std::size_t ey = static_cast<std::size_t>(grid.cells[1] + 2 * g);
+    const std::size_t ex = static_cast<std::size_t>(grid.cells[0]) + 2 * static_cast<std::size_t>(g);
+    const std::size_t ey = static_cast<std::size_t>(grid.cells[1]) + 2 * static_cast<std::size_t>(g);
     return (static_cast<std::size_t>(k + g) * ey + static_cast<std::size_t>(j + g)) * ex + static_cast<std::size_t>(i + g);
   }
   std::size_t flatMapped(int i, int j, int k) const { return flat(mapIndex(i, 0), mapIndex(j, 1), mapIndex(k, 2)); }

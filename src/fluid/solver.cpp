@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -476,9 +477,10 @@ void Solver::cellLinesAndGhosts(const PlaneSlab* slab, Field& out, Line&& line, 
 
 std::vector<NamedCellField> Solver::cellFields() const {
   std::vector<NamedCellField> out;
+  out.reserve(6);
   Field v[3];
   cellVelocity(v);
-  for (int c = 0; c < 3; ++c) out.push_back({kComponentNames[c], "m/s", v[c]});
+  for (int c = 0; c < 3; ++c) out.push_back({kComponentNames[c], "m/s", std::move(v[c])});
   out.push_back({"pressure", "Pa", p_});
   out.push_back({"void_fraction", "-", coupling_.voidFraction});
   if (scalarEnabled_) out.push_back({"scalar", "-", scalar_});

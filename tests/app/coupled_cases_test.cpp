@@ -44,7 +44,7 @@ TEST(CoupledCases, AcceleratingFlowInterpolatedSubstepFieldsRemoveTheCouplingInt
     const std::string interval = "coupling_interval: 10", fields = "substep_fluid_fields: interpolated";
     text.replace(text.find(interval), interval.size(), "coupling_interval: " + std::to_string(substeps));
     text.replace(text.find(fields), fields.size(), "substep_fluid_fields: " + mode);
-    const std::string name = mode + std::to_string(substeps);
+    std::string name = mode + std::to_string(substeps);
     const auto r = grainflow("run " + dir.write(name + ".yaml", text) + " --quiet --threads 1 --output " + dir.file(name));
     EXPECT_EQ(r.exitCode, 0) << r.output;
     return name;

@@ -357,11 +357,10 @@ TEST(Exchange, AnUnevenParticleSplitIsReplacedByEqualBlocks) {
   const int saved = omp_get_max_threads();
   omp_set_num_threads(2);
   auto voidFraction = [&](const std::vector<std::size_t>& blocks) {
-    dem::ParticleSet p = base;
     CouplingFields f(g);
     auto c = makeCoupler("  void_fraction: divided\n", g);
     c->setParticleBlocks(blocks);
-    c->computeVoidFraction(p, f);
+    c->computeVoidFraction(base, f);
     return f.voidFraction.data();
   };
   const std::vector<double> equal = voidFraction({});

@@ -179,7 +179,7 @@ std::vector<double> depositRandom(const ParticleStencils& s, std::size_t cells, 
   for (double& v : values) v = u(rng) * std::pow(10.0, 6.0 * u(rng));  // mixed magnitudes and signs
   allowWideDeposit(wide);
   DepositBuffers b;
-  const std::vector<double> sums = depositChannels<C>(s, cells, b, [&](std::size_t p, double (&v)[C]) {
+  std::vector<double> sums = depositChannels<C>(s, cells, b, [&](std::size_t p, double (&v)[C]) {
     for (int ch = 0; ch < C; ++ch) v[ch] = values[p * C + ch];
   });
   allowWideDeposit(true);
