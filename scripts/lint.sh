@@ -3,17 +3,11 @@
 # src/, tests/ and bench/, with the checks of .clang-tidy (bugprone, the Clang static analyzer,
 # performance; bench/.clang-tidy adds one exception). Any finding is an error and the script
 # exits non-zero. Configures (does not build) build-lint/ (GRAINFLOW_LINT_DIR) for its
-# compile_commands.json. Not part of CI: ~14 min on 2 cores. Extra arguments are regular
+# compile_commands.json. Not part of CI: ~13 min on 2 cores. Extra arguments are regular
 # expressions for the files to check, e.g. `bash scripts/lint.sh src/dem/`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
-if ! command -v run-clang-tidy-14 > /dev/null; then
-  SUDO=""
-  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends clang-tidy-14
-fi
+bash scripts/setup.sh clang-tidy-14
 DIR=${GRAINFLOW_LINT_DIR:-build-lint}
 cmake -S . -B "$DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXPORT_COMPILE_COMMANDS=ON > /dev/null
 run-clang-tidy-14 -p "$DIR" -j "$(nproc)" -quiet "$@"

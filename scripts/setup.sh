@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Install grainflow's build and run dependencies from Debian's packages (bookworm).
 # Idempotent: packages already present are not reinstalled. Needs root (or sudo).
+# Arguments are further packages to install the same way (scripts/lint.sh: clang-tidy-14).
 set -euo pipefail
 
 packages=(
@@ -8,6 +9,7 @@ packages=(
   libyaml-cpp-dev libfmt-dev libspdlog-dev libcli11-dev libeigen3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy
+  "$@"
 )
 
 missing=()

@@ -48,7 +48,7 @@ void computeVorticity(const GridTopology& t, const Field* const (&u)[3], Field (
 
 namespace {
 
-GF_COUPLING_VECTOR_CLONES
+GF_VECTOR_CLONES
 void viscousStressDivergenceRow(const double* const (&u)[3], double* const (&out)[3], std::size_t first, int cells,
                                 const std::ptrdiff_t (&lo)[3], const std::ptrdiff_t (&hi)[3], bool wallLowX,
                                 bool wallHighX, const double (&h2)[3], double viscosity) {
@@ -113,7 +113,7 @@ void computeViscousStressDivergence(const GridTopology& t, const Field* const (&
 }
 
 
-GF_COUPLING_VECTOR_CLONES
+GF_VECTOR_CLONES
 void sampleTrilinearBlock(const TrilinearSampler::Location* where, int count, const double* buffer,
                           double (*out)[13]) {
   static_assert(kTrilinearBlockChannels == 10, "channels 0-7 in one vector of 8, 8-9 in one of 2");

@@ -13,16 +13,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/cpu_features.hpp"  // GF_VECTOR_CLONES
 #include "core/parallel.hpp"
-
-// Functions compiled also for AVX2 and AVX-512, picked at run time by the CPU. The build uses
-// -ffp-contract=off, so no clone fuses a multiply and an add: the same results on every CPU (as
-// GF_VECTOR_CLONES in src/dem/contact/contact_batch.hpp; not under Clang, as there).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__linux__) && !defined(__AVX512F__)
-#define GF_COUPLING_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#else
-#define GF_COUPLING_VECTOR_CLONES
-#endif
 
 namespace gf::coupling {
 

@@ -5,7 +5,7 @@
 
 namespace gf::coupling::drag {
 
-GF_COUPLING_VECTOR_CLONES
+GF_VECTOR_CLONES
 void gidaspowBlock(const double* re, const double* eps, double* f, int n) {
   using Double8 = double __attribute__((vector_size(64)));
   int i = 0;

@@ -10,7 +10,7 @@ namespace {
 /// max(0, r[0..n)) with std::max's rule (a < b ? b : a: NaN entries are skipped), eight running
 /// maxima side by side instead of one serial chain; the maximum does not depend on the order in
 /// which it is taken, so the result is that of the serial loop.
-GF_COUPLING_VECTOR_CLONES
+GF_VECTOR_CLONES
 double maxOf(const double* r, std::size_t n) {
   using Double8 = double __attribute__((vector_size(64)));
   Double8 m8{};

@@ -7,18 +7,9 @@
 // computed with the same operations in the same order as one contact at a time: same results.
 #include <cstdint>
 
+#include "core/cpu_features.hpp"  // GF_VECTOR_CLONES: the evaluation loop also for AVX2 / AVX-512
 #include "core/vec3.hpp"
 #include "dem/contact/contact_force.hpp"
-
-// The evaluation loop is compiled also for AVX2 and AVX-512 and picked at run time by the CPU
-// (the generic x86-64 build otherwise vectorises with SSE2, two contacts at a time). The build
-// uses -ffp-contract=off, so no clone fuses a multiply and an add: same results on every CPU.
-// Clang (14) cannot clone function templates: under Clang (clang-tidy) only the generic loop.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__linux__) && !defined(__AVX512F__)
-#define GF_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#else
-#define GF_VECTOR_CLONES
-#endif
 
 namespace gf::dem {
 
