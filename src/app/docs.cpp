@@ -35,7 +35,7 @@ std::string caseFileReference() {
       out += fmt::format("\n## `{}`\n\n| key | type | default | unit | allowed | description |\n|---|---|---|---|---|---|\n", top);
     }
     out += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", k.path, k.type,
-                       k.defaultValue.empty() ? "required" : "`" + escape(k.defaultValue) + "`", escape(k.unit),
+                       k.defaultValue.empty() ? std::string("required") : fmt::format("`{}`", escape(k.defaultValue)), escape(k.unit),
                        escape(k.allowed), escape(k.help));
   }
   return out;

@@ -69,7 +69,10 @@ PlotTool findPlotTool(const std::string& repositoryHint) {
 
 int runPlotScript(const PlotTool& tool, const std::vector<std::string>& arguments) {
   std::string command = shellQuote(tool.python) + " " + shellQuote(tool.script);
-  for (const std::string& a : arguments) command += " " + shellQuote(a);
+  for (const std::string& a : arguments) {
+    command += ' ';
+    command += shellQuote(a);
+  }
   std::fflush(stdout);
   return shellStatus("MPLBACKEND=Agg " + command);
 }

@@ -184,7 +184,7 @@ void writeDocs(const std::string& docsDirectory, const std::string& repository, 
       md += fmt::format("- `{}`: {} of `{}` in `{}.csv`{}; reference: {}{}\n", q.name, operationName(q.operation), q.column, q.monitor,
                         across, q.reference.source, quick);
     }
-    md += "\n" + markdownTable(rowsPerItem[i]) + "\n";
+    md += fmt::format("\n{}\n", markdownTable(rowsPerItem[i]));
     for (const std::string& png : outcomes[i].plots) {
       std::error_code ec;
       const fs::path target = img / fs::path(png).filename();

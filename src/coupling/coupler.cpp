@@ -390,6 +390,14 @@ void Coupler::alignPreviousSlip(const dem::ParticleSet& particles) {
   keepIds(particles);
 }
 
+// The block arrays of forcePass (where, eps, re, slipSquared, exchangedSquared) are written for
+// q < count and read for q < count only; GCC 12 does not connect the two loop bounds through the
+// inlined helpers (squareRoots, gidaspowBlock, sampleTrilinearBlock) and warns "may be used
+// uninitialized". Zero-filling them would cost a store per entry and block; the warning is off here.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 template <InterpolationMode Mode, bool StandardChannels, class Law>
 void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet& particles) {
   // Per particle: interpolate every fluid field at once (interleaved cell buffer), slip, Re, drag
@@ -521,6 +529,9 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   }, &particleBlocks_);
   particleForceSumsValid_ = true;
 }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 
 void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields& fields,
                                     dem::ParticleSet& particles) {

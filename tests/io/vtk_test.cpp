@@ -1,5 +1,6 @@
 // Output round trip: write VTK XML, parse it back, compare every array exactly.
 #include <gtest/gtest.h>
+#include <fmt/format.h>
 
 #include <cmath>
 
@@ -87,7 +88,7 @@ TEST(Checkpoint, RoundTripAndRejections) {
 TEST(PvdCollection, TruncatesAfterRestartTime) {
   const std::string path = ::testing::TempDir() + "/grainflow_series_test.pvd";
   io::PvdCollection series(path);
-  for (int i = 0; i < 5; ++i) series.add(0.1 * i, "f" + std::to_string(i) + ".vtu");
+  for (int i = 0; i < 5; ++i) series.add(0.1 * i, fmt::format("f{}.vtu", i));
   io::PvdCollection reread(path);
   reread.load();
   EXPECT_EQ(reread.size(), 5u);

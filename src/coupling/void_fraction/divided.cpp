@@ -301,6 +301,13 @@ class DividedVoidFraction final : public VoidFractionScheme {
   }
 
 #if defined(GF_X86_SIMD)
+// GCC 12's _mm512_undefined_* (avx512fintrin.h: `__m512d __Y = __Y;`) is reported as "may be used
+// uninitialized" where it is inlined into a masked intrinsic (GCC bug 105593, fixed in GCC 13); the
+// two AVX-512 functions below pass it only as the don't-care source of an all-ones mask.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
   /// The lower cells and splits (as splitAxis) of the 8 particles from `first` into lane q0..q0+7
   /// of lower/split, one particle per vector lane: per axis and unit coordinate v the same
   /// operations (x + r u_v - origin) * inv as the per-particle form, the floor by rounding down
@@ -443,6 +450,9 @@ class DividedVoidFraction final : public VoidFractionScheme {
       }
     }
   }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 #endif
 };
 
