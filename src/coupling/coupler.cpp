@@ -390,14 +390,6 @@ void Coupler::alignPreviousSlip(const dem::ParticleSet& particles) {
   keepIds(particles);
 }
 
-// The block arrays of forcePass (where, eps, re, slipSquared, exchangedSquared) are written for
-// q < count and read for q < count only; GCC 12 does not connect the two loop bounds through the
-// inlined helpers (squareRoots, gidaspowBlock, sampleTrilinearBlock) and warns "may be used
-// uninitialized". Zero-filling them would cost a store per entry and block; the warning is off here.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
 template <InterpolationMode Mode, bool StandardChannels, class Law>
 void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet& particles) {
   // Per particle: interpolate every fluid field at once (interleaved cell buffer), slip, Re, drag
@@ -432,6 +424,11 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   auto forceBlock = [&, rho, mu, epsFloor, dPrimFactor, k3](const double* samples, std::size_t begin, int count,
                                                             std::array<double, 4>& sums) {
     double sum[4] = {sums[0], sums[1], sums[2], sums[3]};  // in registers, not through the reference
+    // 1 <= count <= kBlock (the one caller below passes min(kBlock, end - p) with p < end). Said
+    // to the compiler: without it GCC 12 takes count <= 0 as possible, in which case the block
+    // arrays below (where, eps, re, slipSquared, exchangedSquared) would be passed on unwritten, and
+    // warns "may be used uninitialized" at every helper call (squareRoots, gidaspowBlock, ...).
+    if (count < 1 || count > kBlock) __builtin_unreachable();
     double s[kBlock][13];
     if constexpr (Mode == InterpolationMode::Trilinear) {
       // locate the whole block first, then sum (the chains of several particles overlap)
@@ -529,9 +526,6 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   }, &particleBlocks_);
   particleForceSumsValid_ = true;
 }
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
 
 void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields& fields,
                                     dem::ParticleSet& particles) {
