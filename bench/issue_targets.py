@@ -12,9 +12,11 @@ bench/spinup.sh, written again when older than EXE), pinned (OMP_PLACES {0} for 
 {0},{1} for two), the order swapped every pair, with each run's phase shares and checkpoint md5,
 and the phases' speed-ups on two threads.
 
-Prints each run as it ends, then one line per target: median, range, the ratio of the medians
-and the range of the pair ratios. The runs take the host as it is: bench/host_check.sh first
-says whether it can show the two-thread targets at all.
+Prints each run as it ends, then one line per target: median, range, the ratio of the medians,
+the ratio of the fastest runs and the range of the pair ratios. A speed-up counts as met only when
+both ratios reach it: the host's noise only slows runs, so slow one-thread runs alone can lift the
+ratio of the medians (session 43: x2.12 on the medians, x1.75 on the fastest runs). The runs take
+the host as it is: bench/host_check.sh first says whether it can show the two-thread targets at all.
 """
 import argparse
 import hashlib
@@ -110,6 +112,16 @@ def verdict(met):
     return "met" if met else "NOT met"
 
 
+def speedup(one, two):
+    """'xA on the medians, xB on the fastest runs, xC-D pair by pair: met' for runs on 1 and 2 threads
+    (times, smaller is faster); met when the medians' and the fastest runs' ratios both reach SPEEDUP."""
+    medians = statistics.median(one) / statistics.median(two)
+    fastest = min(one) / min(two)
+    pairs = [a / b for a, b in zip(one, two)]
+    return (f"x{medians:.3f} on the medians, x{fastest:.3f} on the fastest runs, "
+            f"x{min(pairs):.2f}-{max(pairs):.2f} pair by pair: {verdict(min(medians, fastest) >= SPEEDUP)}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--rounds", type=int, default=4,
@@ -162,24 +174,18 @@ def main():
 
     row("\ntarget (issues 4 and 6)", "measured")
     if args.rounds > 0:
-        pair_ratios = [a / b for a, b in zip(ns[1], ns[2])]
-        ratio = statistics.median(ns[1]) / statistics.median(ns[2])
         row(f"settled bed <= {SETTLED_NS:.0f} ns, 1 thread", f"{summary(ns[1])} ns, "
             f"{sum(v <= SETTLED_NS for v in ns[1])} under: {verdict(statistics.median(ns[1]) <= SETTLED_NS)}")
-        row(f"settled bed >= x{SPEEDUP}, 2 threads", f"{summary(ns[2])} ns: x{ratio:.3f} on the medians, "
-            f"x{min(pair_ratios):.2f}-{max(pair_ratios):.2f} pair by pair: {verdict(ratio >= SPEEDUP)}")
+        row(f"settled bed >= x{SPEEDUP}, 2 threads", f"{summary(ns[2])} ns: {speedup(ns[1], ns[2])}")
         flights = [free[t]["ns_per_particle_step"] for t in (1, 2)]
         row(f"free flight <= {FREE_FLIGHT_NS:.0f} ns", f"{flights[0]:.1f} / {flights[1]:.1f} ns: "
             f"{verdict(max(flights) <= FREE_FLIGHT_NS)}")
         row(f"memory <= {BYTES:.0f} B per particle", f"{min(memory):.0f}-{max(memory):.0f} B "
             f"(settled bed and tiles): {verdict(max(memory) <= BYTES)}")
     if coupled[1] and coupled[2]:
-        bed_ratio = statistics.median(coupled[1]) / statistics.median(coupled[2])
-        bed_pairs = [a / b for a, b in zip(coupled[1], coupled[2])]
         row(f"bubbling bed <= {BED_SECONDS:.0f} s, 1 thread", f"{summary(coupled[1])} s: "
             f"{verdict(statistics.median(coupled[1]) <= BED_SECONDS)}")
-        row(f"bubbling bed >= x{SPEEDUP}, 2 threads", f"{summary(coupled[2])} s: x{bed_ratio:.3f} on the medians, "
-            f"x{min(bed_pairs):.2f}-{max(bed_pairs):.2f} pair by pair: {verdict(bed_ratio >= SPEEDUP)}")
+        row(f"bubbling bed >= x{SPEEDUP}, 2 threads", f"{summary(coupled[2])} s: {speedup(coupled[1], coupled[2])}")
         speedups = []
         for name in phase_seconds[1][0]:
             ratios = [one[name] / two[name] for one, two in zip(phase_seconds[1], phase_seconds[2]) if two.get(name)]
