@@ -1,6 +1,7 @@
 // Output cost: VTK XML (base64 binary) particle file, per particle.
 #include <benchmark/benchmark.h>
 
+#include "dem/particles.hpp"
 #include "io/vtk.hpp"
 
 static void BM_ParticlesVtu(benchmark::State& state) {

@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-#include "dem/walls/stl_reader.hpp"
+#include "io/stl_reader.hpp"
 #include "fluid/initial_condition.hpp"
 #include "fluid/loops.hpp"
 #include "fluid/solid_mesh.hpp"
@@ -143,7 +143,7 @@ void Solver::markBlocked(Params& fluid) {
       std::filesystem::path path(file);
       if (path.is_relative()) path = std::filesystem::path(b.fileName()).parent_path() / path;
       try {
-        auto triangles = dem::readStl(path.string());
+        auto triangles = io::readStl(path.string());
         for (auto& t : triangles)
           for (Vec3& v : t) v = scale * v + offset;
         mesh.emplace(std::move(triangles));

@@ -69,7 +69,7 @@ void appendDataArray(std::string& out, const VtkArray& a) {
 }
 
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 arrays are written as 3-component Float64 arrays");
-void appendVectors(std::string& out, const std::string& name, const std::vector<Vec3>& v) {
+void appendVectors(std::string& out, const std::string& name, std::span<const Vec3> v) {
   appendDataArray(out, "Float64", name, 3, v.data(), v.size() * sizeof(Vec3));
 }
 }  // namespace
@@ -101,8 +101,13 @@ std::vector<unsigned char> base64Decode(const std::string& text) {
   return out;
 }
 
-std::string particlesVtu(const dem::ParticleSet& p) {
-  const std::size_t n = p.size();
+std::string particlesVtu(const ParticleArrays& p) {
+  const std::size_t n = p.id.size();
+  for (const std::size_t size : {p.type.size(), p.radius.size(), p.position.size(), p.velocity.size(),
+                                 p.angularVelocity.size(), p.force.size()})
+    if (size != n)
+      throw Error(fmt::format("particle output: {} ids but an array of {} entries (one entry per particle expected)",
+                              n, size));
   std::vector<std::int64_t> connectivity(n), offsets(n);
   const std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
   for (std::size_t i = 0; i < n; ++i) {

@@ -4,11 +4,12 @@
 // Arrays are written in binary (base64, UInt64 headers), so files are compact yet plain XML.
 #include <cstdint>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "core/grid.hpp"
-#include "dem/particles.hpp"
+#include "core/vec3.hpp"
 
 namespace gf::io {
 
@@ -25,8 +26,26 @@ struct VtkArray {
 std::string base64Encode(const void* data, std::size_t size);
 std::vector<unsigned char> base64Decode(const std::string& text);
 
+/// The per-particle arrays a particle file holds, as views of the caller's arrays (one entry per
+/// particle in each). io knows no solver type, so that every part of the code may write output.
+struct ParticleArrays {
+  std::span<const std::int64_t> id;
+  std::span<const std::int32_t> type;
+  std::span<const double> radius;            // m
+  std::span<const Vec3> position;            // m
+  std::span<const Vec3> velocity;            // m/s
+  std::span<const Vec3> angularVelocity;     // rad/s
+  std::span<const Vec3> force;               // N
+};
+
 /// Particle file: points = centres; point data id, type, radius, velocity, angular_velocity, force.
-std::string particlesVtu(const dem::ParticleSet& particles);
+/// Throws gf::Error if the arrays differ in length.
+std::string particlesVtu(const ParticleArrays& particles);
+/// The same for any structure of arrays with these members (dem::ParticleSet).
+template <class ParticleStorage>
+std::string particlesVtu(const ParticleStorage& p) {
+  return particlesVtu(ParticleArrays{p.id, p.type, p.radius, p.position, p.velocity, p.angularVelocity, p.force});
+}
 /// The interior values of a cell-centred field, in VTK order (x fastest).
 VtkArray cellArray(const std::string& name, const Field& field);
 /// Cell-centred fields on a grid (interior cells only).

@@ -1,5 +1,5 @@
-// Wall geometry and motion: STL (ASCII and binary), cylinders (inside/outside), cones, moving
-// and rotating walls, wall loads.
+// Wall geometry and motion: STL meshes, cylinders (inside/outside), cones, moving and rotating
+// walls, wall loads. (Reading STL files is tested in tests/io/stl_reader_test.cpp.)
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -8,7 +8,6 @@
 #include <fstream>
 #include <numbers>
 
-#include "dem/walls/stl_reader.hpp"
 #include "dem/walls/wall_primitive.hpp"
 #include "dem_test_util.hpp"
 
@@ -20,44 +19,23 @@ using test::materialsYaml;
 
 const std::filesystem::path kTmp = std::filesystem::temp_directory_path() / "grainflow_dem_walls_test";
 
-// Square [-L, L]^2 at z = 0 as two triangles.
-void writeStl(const std::filesystem::path& path, bool binary, double L) {
+// Square [-L, L]^2 at z = 0 as two triangles, binary STL.
+void writeStl(const std::filesystem::path& path, double L) {
   const float v[2][3][3] = {{{-float(L), -float(L), 0}, {float(L), -float(L), 0}, {float(L), float(L), 0}},
                             {{-float(L), -float(L), 0}, {float(L), float(L), 0}, {-float(L), float(L), 0}}};
+  std::filesystem::create_directories(path.parent_path());
   std::ofstream out(path, std::ios::binary);
-  if (binary) {
-    char header[80] = {};
-    out.write(header, 80);
-    const std::uint32_t n = 2;
-    out.write(reinterpret_cast<const char*>(&n), 4);
-    for (const auto& t : v) {
-      const float normal[3] = {0, 0, 1};
-      out.write(reinterpret_cast<const char*>(normal), 12);
-      out.write(reinterpret_cast<const char*>(t), 36);
-      const std::uint16_t attr = 0;
-      out.write(reinterpret_cast<const char*>(&attr), 2);
-    }
-  } else {
-    out << "solid square\n";
-    for (const auto& t : v) {
-      out << " facet normal 0 0 1\n  outer loop\n";
-      for (const auto& p : t) out << "   vertex " << p[0] << " " << p[1] << " " << p[2] << "\n";
-      out << "  endloop\n endfacet\n";
-    }
-    out << "endsolid square\n";
+  char header[80] = {};
+  out.write(header, 80);
+  const std::uint32_t n = 2;
+  out.write(reinterpret_cast<const char*>(&n), 4);
+  for (const auto& t : v) {
+    const float normal[3] = {0, 0, 1};
+    out.write(reinterpret_cast<const char*>(normal), 12);
+    out.write(reinterpret_cast<const char*>(t), 36);
+    const std::uint16_t attr = 0;
+    out.write(reinterpret_cast<const char*>(&attr), 2);
   }
-}
-
-TEST(DemWalls, StlAsciiAndBinaryReadTheSameTriangles) {
-  std::filesystem::create_directories(kTmp);
-  writeStl(kTmp / "a.stl", false, 0.01);
-  writeStl(kTmp / "b.stl", true, 0.01);
-  const auto a = readStl((kTmp / "a.stl").string()), b = readStl((kTmp / "b.stl").string());
-  ASSERT_EQ(a.size(), 2u);
-  ASSERT_EQ(b.size(), 2u);
-  for (int t = 0; t < 2; ++t)
-    for (int v = 0; v < 3; ++v) EXPECT_LT(norm(a[t][v] - b[t][v]), 1e-9);  // binary holds floats
-  EXPECT_THROW(readStl((kTmp / "missing.stl").string()), Error);
 }
 
 TEST(DemWalls, DistanceToPrimitivesIsExact) {
@@ -99,9 +77,9 @@ double bounceOn(const std::string& walls, const Vec3& start, const Vec3& v, Vec3
 }
 
 TEST(DemWalls, StlPlaneCylinderAndConeReflectWithRestitution) {
-  writeStl(kTmp / "square.stl", true, 0.02);
-  const double ascii = bounceOn("  - {type: stl, file: square.stl}\n", {0.001, 0.002, 0.0012}, {0, 0, -0.5});
-  EXPECT_NEAR(ascii, 0.8, 0.01 * 0.8);
+  writeStl(kTmp / "square.stl", 0.02);
+  const double mesh = bounceOn("  - {type: stl, file: square.stl}\n", {0.001, 0.002, 0.0012}, {0, 0, -0.5});
+  EXPECT_NEAR(mesh, 0.8, 0.01 * 0.8);
   // Inside a cylinder of radius 0.01 (drum), moving radially outwards.
   const double inner = bounceOn("  - {type: cylinder, base: [0, 0, -0.01], axis: [0, 0, 0.02], radius: 0.01}\n",
                                 {0.0088, 0, 0}, {0.5, 0, 0});

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "dem/particles.hpp"
 #include "io/atomic_file.hpp"
 #include "io/checkpoint.hpp"
 #include "io/vtk.hpp"

@@ -1,8 +1,8 @@
 // Triangle-mesh wall from an ASCII or binary STL file.
 #include <filesystem>
 
-#include "dem/walls/stl_reader.hpp"
 #include "dem/walls/wall.hpp"
+#include "io/stl_reader.hpp"
 
 namespace gf::dem {
 namespace {
@@ -18,7 +18,7 @@ class StlWall final : public Wall {
     std::filesystem::path path(file);
     if (path.is_relative()) path = std::filesystem::path(p.fileName()).parent_path() / path;
     try {
-      for (const Triangle& t : readStl(path.string())) {
+      for (const io::Triangle& t : io::readStl(path.string())) {
         WallPrimitive w;
         w.kind = PrimitiveKind::Triangle;
         w.a = scale * t[0] + offset;

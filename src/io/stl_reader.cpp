@@ -1,4 +1,4 @@
-#include "dem/walls/stl_reader.hpp"
+#include "io/stl_reader.hpp"
 
 #include <fmt/format.h>
 
@@ -10,7 +10,7 @@
 
 #include "core/error.hpp"
 
-namespace gf::dem {
+namespace gf::io {
 
 namespace {
 
@@ -65,4 +65,4 @@ std::vector<Triangle> readStl(const std::string& path) {
   return parseAscii(bytes, path);
 }
 
-}  // namespace gf::dem
+}  // namespace gf::io
