@@ -42,6 +42,9 @@ class Monitor {
   virtual ~Monitor() = default;
   virtual std::vector<MonitorColumn> columns() const = 0;
   virtual std::vector<double> sample(const RunState& state) = 0;
+  /// The rows written at one sample time, each with the same time: one row, sample()'s, for most
+  /// monitors; a profile along a line writes one row per cell (fluid_line_profile).
+  virtual std::vector<std::vector<double>> sampleRows(const RunState& state) { return {sample(state)}; }
   /// Monitors that accumulate (e.g. mass through a plane) save and restore their state, so a
   /// restarted run writes the same numbers as an uninterrupted one.
   virtual void save(BinaryWriter& out) const {}

@@ -95,4 +95,25 @@ std::array<double, 4> probe(const Solver& s, const Vec3& point) {
           trilinear(s.pressure(), g, point)};
 }
 
+LineProfile lineProfile(const Solver& s, int axis, const Vec3& point) {
+  Field u[3];
+  s.cellVelocity(u);
+  const CartesianGrid& g = s.grid();
+  const Field& eps = s.couplingFields().voidFraction;
+  LineProfile out;
+  const int n = g.cells[axis];
+  out.position.reserve(n);
+  for (int c = 0; c < n; ++c) {
+    // On the cell centre along the axis, so the weight along it is 0 and the other two
+    // directions interpolate between the centres nearest to `point`.
+    Vec3 x = point;
+    x[axis] = g.origin[axis] + (c + 0.5) * g.spacing[axis];
+    out.position.push_back(x[axis]);
+    out.velocity.push_back({trilinear(u[0], g, x), trilinear(u[1], g, x), trilinear(u[2], g, x)});
+    out.pressure.push_back(trilinear(s.pressure(), g, x));
+    out.voidFraction.push_back(trilinear(eps, g, x));
+  }
+  return out;
+}
+
 }  // namespace gf::fluid

@@ -1,7 +1,8 @@
 #pragma once
 // Derived fluid quantities sampled by monitors (and tests): plane averages, flow rates,
-// kinetic energy, point probes.
+// kinetic energy, point probes, profiles along a line.
 #include <array>
+#include <vector>
 
 #include "fluid/solver.hpp"
 
@@ -17,5 +18,16 @@ double flowRate(const Solver& s, int axis, double position);
 double kineticEnergy(const Solver& s);
 /// Velocity (3) and pressure at a point (trilinear in cell-centred values).
 std::array<double, 4> probe(const Solver& s, const Vec3& point);
+
+/// Fields along a grid line: one sample per cell along `axis`, at the cell centres' coordinate on
+/// that axis; the other two coordinates are those of `point` (linear between the cell centres
+/// there, as probe()).
+struct LineProfile {
+  std::vector<double> position;                  // coordinate along the axis, m
+  std::vector<std::array<double, 3>> velocity;  // cell-centred (mean of the two faces), m/s
+  std::vector<double> pressure;                  // Pa
+  std::vector<double> voidFraction;              // -
+};
+LineProfile lineProfile(const Solver& s, int axis, const Vec3& point);
 
 }  // namespace gf::fluid
