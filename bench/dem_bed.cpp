@@ -1,4 +1,4 @@
-// DEM throughput: random settled bed (the issue-4 benchmark), lattice beds, free flight, and
+// DEM throughput: random settled bed (the reference benchmark), lattice beds, free flight, and
 // scaling with particle count.
 // Counters: ns_per_particle_step (wall time / (particles x steps)), bytes_per_particle (all DEM
 // arrays incl. neighbour list and contact history), rebuilds during the timed steps.
@@ -80,8 +80,9 @@ void runSteps(benchmark::State& state, Bed& bed, int warmup) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Random settled bed (issue 4): spheres d = 2 mm, rho = 2500, Hertz-Mindlin with history, E = 1e7,
-// nu = 0.45, e = 0.3, mu = 0.5, dt = 2e-6. Built at set-up, nothing cached on disk:
+// Random settled bed (the DEM reference benchmark, also timed against LIGGGHTS): spheres d = 2 mm,
+// rho = 2500, Hertz-Mindlin with history, E = 1e7, nu = 0.45, e = 0.3, mu = 0.5, dt = 2e-6.
+// Built at set-up, nothing cached on disk:
 //  1. random sequential addition at solid fraction 0.22 in a tall region (geometric, cheap);
 //  2. settling with the real Hertz law but frictionless (a denser, better-connected bed, as a
 //     poured bed of rough spheres after tapping), dt = 1e-5 (11 % of the Rayleigh time) and
@@ -163,7 +164,7 @@ const SettledTile& issueBedTile() {
   return tile;
 }
 
-// ~15,000 spheres settled in the 0.06 x 0.06 x 0.2 m box of the issue (walls on all sides).
+// ~15,000 spheres settled in the 0.06 x 0.06 x 0.2 m box (walls on all sides).
 void BM_DemSettledBed(benchmark::State& state) {
   const auto start = std::chrono::steady_clock::now();
   const SettledTile& tile = issueBedTile();
@@ -177,10 +178,11 @@ void BM_DemSettledBed(benchmark::State& state) {
 BENCHMARK(BM_DemSettledBed)->Unit(benchmark::kMillisecond)->MinTime(3.0)->UseRealTime();
 
 // The force loop's split from the threads' measured speeds against the equal-share split, on the
-// issue's settled bed: two copies of the bed in one process, stepped in turns of 50 steps (the
-// order alternating), so both see the same host (a shared machine's speed drifts over seconds,
-// which separate runs would compare instead). Same bits either way (docs/dem.md, session 31);
-// equal_over_measured > 1: the measured split is faster. Meaningful with 2 or more threads.
+// settled bed: two copies of the bed in one process, stepped in turns of 50 steps (the order
+// alternating), so both see the same host (a shared machine's speed drifts over seconds, which
+// separate runs would compare instead). Same bits either way (docs/dem.md: the force sums do not
+// depend on the split); equal_over_measured > 1: the measured split is faster. Meaningful with 2
+// or more threads.
 void BM_DemSettledBedSplit(benchmark::State& state) {
   const SettledTile& tile = issueBedTile();
   auto measured = bedFromTile(tile, 1, 1, false);

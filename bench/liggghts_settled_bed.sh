@@ -12,7 +12,7 @@
 # 2. ROUNDS rounds, each one grainflow_bench BM_DemSettledBed (500 warm-up steps, then >= 3 s
 #    timed) and, right after it, LIGGGHTS on the same positions (the same 500 warm-up steps, in
 #    which the friction history builds up, then STEPS timed steps: "Loop time" / (steps x
-#    particles)). The host's speed drifts by tens of per cent within minutes (README, session 18),
+#    particles)). A shared host's speed can drift by tens of per cent within minutes,
 #    so the two codes alternate, and the figures compared are each code's fastest round (the
 #    least disturbed one) with the medians beside them.
 # 3. The same physics: grainflow runs the same positions as a case (csv_file insertion) for
