@@ -5,10 +5,10 @@
 # exits non-zero. Configures (does not build) build-lint/ (GRAINFLOW_LINT_DIR) for its
 # compile_commands.json. Not part of CI: ~13 min on 2 cores. Extra arguments are regular
 # expressions for the files to check, e.g. `bash scripts/lint.sh src/dem/`.
-# cppcheck (Debian's 2.10) is not run: tried in session 43, it stops at C++20 templated lambdas
-# (`[&]<int D>() {...}`, "internalAstError") and so checks nothing in the 31 of 161 translation
-# units that include the contact kernel or the fluid's convection (a planted out-of-bounds read
-# there goes unreported); its other 28 findings were false positives (8) or style (20).
+# cppcheck (Debian's 2.10) is not run: it stops at C++20 templated lambdas (`[&]<int D>() {...}`,
+# "internalAstError") and so checks nothing in the translation units that include the contact
+# kernel or the fluid's convection (a planted out-of-bounds read there goes unreported); its other
+# findings were false positives or style.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh clang-tidy-14

@@ -6,9 +6,9 @@
 # and libomp-14 (GCC's libgomp has no such tool), -O1 -g, in build-race/ (GRAINFLOW_RACE_DIR); the
 # vector clones are off under Clang (core/cpu_features.hpp), so the SSE2 paths are the ones
 # checked. The tests run on OMP_NUM_THREADS (default 2) threads, or the team sizes they set
-# themselves (2-4); the bubbling bed of issue 6 runs 50 coupling steps on 2 threads. A race fails
-# the test or run that reached it (halt_on_error). Not part of CI (~10 min on 2 cores: build ~5,
-# tests ~5). Extra arguments go to ctest, e.g. `-R DemSystem`.
+# themselves (2-4); the bubbling bed (cases/cfddem_bubbling_fluidised_bed.yaml) runs 50 coupling
+# steps on 2 threads. A race fails the test or run that reached it (halt_on_error). Not part of CI
+# (~10 min on 2 cores: build ~5, tests ~5). Extra arguments go to ctest, e.g. `-R DemSystem`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh clang-14 libomp-14-dev
