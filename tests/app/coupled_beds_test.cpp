@@ -30,7 +30,7 @@ double ergun(double U, double eps, double d, double Hb, double mu, double rho) {
 }  // namespace
 
 // cases/cfddem_fixed_packed_bed.yaml: fixed simple-cubic bed (eps = 1 - pi/6, d = 2 mm, Hb = 32 mm, water), Gidaspow drag: the pressure
-// gradient inside the bed times Hb is Ergun's pressure drop within 5 % (issue 6) at Re_p = 40, and
+// gradient inside the bed times Hb is Ergun's pressure drop within 5 % at Re_p = 40, and
 // Newton's third law of the exchange holds to round-off in every coupling step.
 TEST(CoupledBeds, FixedPackedBedFollowsErgun) {
   TempDir dir;
@@ -49,7 +49,7 @@ TEST(CoupledBeds, FixedPackedBedFollowsErgun) {
   for (const auto& row : balance.rows) EXPECT_LT(row.at(4), 1e-12) << "relative momentum error at t = " << row.at(0);
 }
 
-// Pseudo-2D bubbling bed of issue 6 (24,750 spheres), first 4 ms: the inlet ramps up, the loose
+// Pseudo-2D bubbling bed (cases/cfddem_bubbling_fluidised_bed.yaml, 24,750 spheres), first 4 ms: the inlet ramps up, the loose
 // packing starts to fall (mean centre height decreases), every exchange conserves momentum to
 // round-off and the particle volume is deposited completely; the pressure drop is positive and below
 // the weight per area of the bed (the bed is not yet carried by the gas).

@@ -28,7 +28,7 @@ TEST(CoupledCases, SingleParticleSettlingReachesPublishedTerminalVelocity) {
   EXPECT_NE(gf::testing::readAll(dir.file("o/fluid.pvd")).find("fluid_000006.vti"), std::string::npos);
 }
 
-// Coupling interval (issue 6, item 7; seed 000 sec. 5.3, investigation II): a bead dragged by air
+// Coupling interval (seed 000 sec. 5.3, investigation II): a bead dragged by air
 // accelerating linearly in time, u_f = a t, Stokes drag only, so that
 // u_p(t) = a (t - tau (1 - exp(-t / tau))), tau = rho_p d^2 / (18 mu). The DEM step (1e-4 s) stays,
 // the coupling interval N = 1, 10, 20 DEM steps varies. Held forces (seed 000 "Base Case") carry

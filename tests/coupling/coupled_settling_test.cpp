@@ -1,6 +1,6 @@
 // A single sphere settling through the two-way coupled solver (Coupler + the real fluid solver,
 // model A, implicit exchange, divided void fraction, trilinear interpolation), at terminal
-// Re = 0.1, 1 and 10 (issue 6: within 2 % of the drag law's terminal velocity). The sphere starts
+// Re = 0.1, 1 and 10 (within 2 % of the drag law's terminal velocity). The sphere starts
 // in the cell next to the top wall: the particles there feel the buoyancy through the fluid's
 // cell-centred grad p, which must be the full hydrostatic gradient also next to walls (it was
 // half of it, from the central difference with the zero-gradient pressure ghost: the sphere then
@@ -97,7 +97,7 @@ double settle(double viscosity, double time, double* terminal) {
 TEST(CoupledSettling, SingleSphereReachesTheLawsTerminalVelocityAtLowRe) {
   // viscosities of validation/cfddem_single_sphere_settling/reference.csv (Re_t = 0.1, 1, 10);
   // 0.5 s is more than 10 relaxation times at each; the sphere stays in the top cell (Re 0.1, 1)
-  // or crosses into the next (Re 10). Tolerance 2 % (issue 6); reached: +0.04 %, +0.01 %, +0.005 %.
+  // or crosses into the next (Re 10). Tolerance 2 %; reached: +0.04 %, +0.01 %, +0.005 %.
   for (double mu : {0.25188, 0.0754119, 0.0194453}) {
     double vt = 0.0;
     const double v = settle(mu, 0.5, &vt);

@@ -126,7 +126,7 @@ TEST(DemContact, HertzContactDurationWithinTwoPercent) {
 }
 
 // Between two spheres (effective mass m/2, effective radius r/2): Hertz duration (Johnson 1985
-// eq. 11.24) and the damped linear-spring duration pi / omega_d, within 2 % (issue 4). Measured:
+// eq. 11.24) and the damped linear-spring duration pi / omega_d, within 2 %. Measured:
 // Hertz within 1e-5; Hooke e = 1 within 1e-5, e = 0.5 0.8 % short (the normal force is not allowed
 // to pull: it is clipped to zero once the dashpot outweighs the spring, before the overlap ends).
 TEST(DemContact, ParticlePairContactDurationWithinTwoPercent) {

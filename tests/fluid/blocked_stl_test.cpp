@@ -1,4 +1,4 @@
-// Blocked cells from closed STL meshes (issue 5): a cell is blocked when its centre is inside the
+// Blocked cells from closed STL meshes: a cell is blocked when its centre is inside the
 // mesh (generalised winding number, Jacobson et al. 2013). An STL cube, ASCII or binary, scaled
 // from mm, must block exactly the cells of the equivalent `shape: box`.
 #include <gtest/gtest.h>

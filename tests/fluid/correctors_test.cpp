@@ -1,4 +1,4 @@
-// PISO-style pressure correctors (fluid.correctors, issue 5). The projection corrects the
+// PISO-style pressure correctors (fluid.correctors). The projection corrects the
 // velocity with the time (and drag) diagonal only, so u^{n+1}, p^{n+1} leave a momentum residual:
 // the implicit viscous operator applied to the correction (splitting error). Each further
 // corrector (momentum residual with the new pressure, Jacobi update, projection) must shrink it,

@@ -94,8 +94,8 @@ TEST(Multigrid, FullyPeriodicOddCoarsening) {
   EXPECT_LT(check, 2e-9);
 }
 
-// The pseudo-2D fluidised-bed grid (2 x 30 x 90, pressure outlet on top; issue 5): the odd counts
-// 15 and 45 must coarsen further (before: 2 levels, a 1350-cell Gauss-Seidel coarsest level) and
+// The pseudo-2D fluidised-bed grid (2 x 30 x 90, pressure outlet on top): the odd counts 15 and
+// 45 must coarsen further (a rule that stops at odd counts leaves a 1350-cell coarsest level) and
 // the 2-cell axis must be coarsened to 1 too (kept at 2, its coupling grows 4x per level relative
 // to the others and point smoothing stalls: 15 iterations instead of 7), so the iteration count
 // stays that of a cube (5-7). The long z axis is stored innermost: the residual check also tests

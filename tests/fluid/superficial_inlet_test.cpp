@@ -1,4 +1,4 @@
-// Superficial velocity inlet (issue 5): with particles in the first cells (eps = 0.5) the mass
+// Superficial velocity inlet: with particles in the first cells (eps = 0.5) the mass
 // flux through the inlet face must be U A (the prescribed velocity is superficial, as a
 // fluidisation velocity is), so the outflow flux of the incompressible gas is U A too
 // (continuity of the volume-averaged equations, seed 000 eq. 5.3, steady eps). With
