@@ -161,7 +161,7 @@ int runCommandLine(int argc, char** argv) {
 
   auto* docs = app.add_subcommand("docs", "print the case-file reference (Markdown), generated from the schema");
 
-  // validate / plot (issue 10; see src/app/validate.hpp and docs/validation-format.md)
+  // validate / plot (see src/app/validate.hpp and docs/validation-format.md)
   ValidateOptions validateOptions;
   auto* validate = app.add_subcommand("validate", "run the validation items (validation/*/validation.yaml), compare with the references");
   validate->add_option("names", validateOptions.names, "items to run (default: all)");

@@ -17,8 +17,8 @@ inline constexpr std::int64_t kMinParallelLoop = 512;
 
 /// Whether a loop of n iterations runs on the calling thread: short, one thread, or already in a
 /// team. No parallel region is opened then, not even one of one thread: libgomp's barrier makes a
-/// futex-wake system call in a team of one as well, 1.1-1.5 us per region, barrier or
-/// worksharing loop on the development VM (3 ns for a barrier outside any region).
+/// futex-wake system call in a team of one as well, about a microsecond per region, barrier or
+/// worksharing loop (a few ns for a barrier outside any region).
 inline bool runsOnCallingThread(std::int64_t n) {
   return n < kMinParallelLoop || omp_get_max_threads() == 1 || omp_in_parallel();
 }
@@ -39,10 +39,10 @@ inline void runTeam(int team, Member&& member) {
 
 /// A barrier for the members of one team that synchronise many times per region (the pressure
 /// solve's ~96 per call). An OpenMP barrier in libgomp ends with a futex-wake system call also when
-/// every member is already there: 1.5 us per barrier on the development VM, against 0.26-0.38 us
-/// for this one (two threads, 2e5 barriers). The waiters spin a bounded time (kSpins pauses), then
-/// sleep in std::atomic::wait, so an oversubscribed machine loses no more than a short spin; the
-/// last arriver's notify makes no system call when nobody sleeps (libstdc++ counts the waiters).
+/// every member is already there: about five times the cost of this one on two threads
+/// (`grainflow bench BM_TeamBarrier --threads 2` gives this one's). The waiters spin a bounded
+/// time (kSpins pauses), then sleep in std::atomic::wait, so an oversubscribed machine loses no
+/// more than a short spin; the last arriver's notify makes no system call when nobody sleeps (libstdc++ counts the waiters).
 /// Memory: the arrivals are acq_rel read-modify-writes and the release is a release store, so all
 /// that the members wrote before the barrier is visible to every member after it (as the OpenMP
 /// barrier's flush). A team of one (or a region with another member count than `team`: the

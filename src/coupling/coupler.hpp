@@ -123,7 +123,7 @@ class Coupler {
   /// whose largest block holds more than kMaxBlockExcess above an equal share is replaced by
   /// equal blocks (the bubbling bed's split holds 59 % of the particles in one of 2 blocks: its
   /// coupling then waited ~18 % on one thread; equal blocks move ~9 % of the particles to the
-  /// other core's cache, which costs less; docs/coupling.md, session 20). The sums over particles
+  /// other core's cache, which costs less; docs/coupling.md, section 12). The sums over particles
   /// (deposits, momentum balance) follow the split, so it must be a function of the state (as
   /// the DEM's is) for runs to be reproducible.
   static constexpr double kMaxBlockExcess = 0.05;

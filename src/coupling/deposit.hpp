@@ -13,8 +13,8 @@
 // contiguous block of a space-filling-curve order, cover a part of the grid), and each thread
 // zeroes its own range afterwards. Outside its range a buffer holds +0.0, which adds nothing to a
 // sum that starts at 0.0 (such a sum is never -0.0): the same bits as adding every buffer, without
-// reading the other cores' zeros (a cache line moves between the cores of the development VM in
-// ~0.25-0.6 us) and without a zero pass before the deposit.
+// reading the other cores' zeros (a cache line moving between cores costs some hundred
+// nanoseconds) and without a zero pass before the deposit.
 #include <omp.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>

@@ -54,9 +54,7 @@ void dispatchLaws(NormalLaw n, RollingLaw r, CohesionLaw c, F&& f) {
 /// samples in the bubbling bed, the first 1.15 x the second's in the settled bed); the inline kick
 /// was first taken as free, and per-thread CPU time then showed the kicking block at 1.3-1.4 x the
 /// others in the bubbling bed, 1.2 x in the settled bed; with 1.5 both were within 0.95-1.05.
-/// (Until session 12 only thread 0 kicked inline and the others after the barrier, 1.0 per row:
-/// the bubbling bed's second thread then spent 70-110 us per step on its kicks and the buffer
-/// merge while the first one waited.)
+/// Every thread kicks its final rows inline, so the kick is charged to every block.
 struct BlockSplit {
   static constexpr double kRowCost = 1.0, kTouchingCost = 2.5, kWallCost = 1.0, kKickCost = 1.5;
   /// weight (optional, one per thread): block t gets the share weight[t] / sum of the cost
@@ -399,7 +397,7 @@ struct InverseInertia {
 /// all ones, or zero when every particle has particle 0's values. The loads x[i & mask] then stay
 /// on one cache line instead of a line per partner and per row (the values are the same, so are
 /// the results: bit-identical either way). The bubbling bed (24,750 identical spheres): contacts
-/// -10 % on one thread (docs/dem.md, session 14).
+/// -10 % on one thread (docs/dem.md, Performance).
 inline std::uint32_t identicalIndexMask(bool identical) { return identical ? 0u : ~0u; }
 
 /// One thread's pass over its block of rows [begin, end) of the half neighbour list (see
@@ -515,9 +513,9 @@ struct BlockSweep {
   /// Requests the data of the partners of row a in later blocks (j >= end), some rows before the
   /// gather needs them. Those partners are the next thread's particles: their positions and
   /// velocities were last written by that thread (drift, kicks), so each is a transfer from the
-  /// other core's cache. Without the request the first block's sweep took 17-23 % longer
-  /// than the second's for the same work (settled bed, 2 threads, session 19: 1,750 such pairs
-  /// per step). Rows hold ascending partners: the later-block ones are last.
+  /// other core's cache. Without the request the first block's sweep took ~20 % longer than
+  /// the second's for the same work (settled bed, 2 threads: ~1,750 such pairs per step). Rows
+  /// hold ascending partners: the later-block ones are last.
   [[gnu::always_inline]] void prefetchLaterBlockPartners(std::size_t a) const {
     if (a >= end) return;
     const std::uint32_t first = rowStart[a];

@@ -61,10 +61,9 @@ class NeighbourList {
 /// builds.
 ///
 /// Thread t takes the same contiguous chunks in both passes and in every build (static schedule),
-/// so a row range, its buffers and its output stay in one core's cache: on the 2-vCPU development
-/// VM a cache line moving between the cores costs ~0.25-0.6 us (measured ping-pong round trip
-/// 0.5-1.2 us), and dynamic chunks made each thread as slow on its half of the settled bed's list
-/// build as one thread on all of it (2.2 vs 2.5 ms; static: 1.4 ms). The cost of a row varies
+/// so a row range, its buffers and its output stay in one core's cache: a cache line moving
+/// between two cores costs some hundred nanoseconds, and dynamic chunks made each thread as slow
+/// on its half of the settled bed's list build as one thread on all of it. The cost of a row varies
 /// along the array (the dense and the dilute parts of a bed lie in different halves of a Morton
 /// order), so with `costStart` (cumulative estimated cost of rows [0, i), size n + 1: e.g. the
 /// previous build's row starts) the chunks hold equal shares of 1 per row + costStart; without it
