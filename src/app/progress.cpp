@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -17,6 +18,19 @@ std::string formatDuration(double seconds) {
   return fmt::format("{}s", s);
 }
 }  // namespace
+
+WallClockInterval::WallClockInterval(double seconds)
+    // (at most 1e9 s: a longer interval would not fit the clock's integer ticks, and never ends)
+    : interval_(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+          std::chrono::duration<double>(std::min(seconds, 1e9)))),
+      last_(std::chrono::steady_clock::now()) {}
+
+bool WallClockInterval::due() {
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_ < interval_) return false;
+  last_ = now;
+  return true;
+}
 
 ProgressReporter::ProgressReporter(double endTime, double plainInterval, bool quiet)
     : endTime_(endTime),

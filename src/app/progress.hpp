@@ -5,6 +5,18 @@
 
 namespace gf::app {
 
+/// True at most once per `seconds` of wall time: due() answers whether that much has passed since
+/// it last answered true (or since construction), and restarts the interval when it has.
+class WallClockInterval {
+ public:
+  explicit WallClockInterval(double seconds);
+  bool due();
+
+ private:
+  std::chrono::steady_clock::duration interval_;
+  std::chrono::steady_clock::time_point last_;
+};
+
 class ProgressReporter {
  public:
   ProgressReporter(double endTime, double plainInterval, bool quiet);

@@ -51,7 +51,9 @@ CaseSettings CaseSettings::read(Params& root, const std::string& caseFile) {
       0);
 
   Params run = root.section({"run", "-", "run control"});
-  s.progressInterval = run.real({"progress_interval", "s", "wall time between progress lines when not on a terminal",
+  s.progressInterval = run.real({"progress_interval", "s",
+                                 "wall time between progress lines when not on a terminal; also the longest wait, "
+                                 "with or without --quiet, before new monitor rows reach the CSV files",
                                  Range::positive()},
                                 10.0);
   s.healthCheckInterval = run.integer(
@@ -362,13 +364,15 @@ void Simulation::saveGoodState() {
   // checkpoint is still a good one.
   checkHealth();
   ScopedPhase timer(appTimers_, Phase::Output);
+  // Monitor rows first, so that the CSVs on disk always reach the time of the checkpoint on disk: a
+  // restart keeps their rows up to that time and drops the later ones (CsvSeries::resumeFrom).
+  flushMonitors();
   writeCheckpoint(checkpointPath());
   lastCheckpoint_ = checkpointPath();
-  flushMonitors();
 }
 
-void Simulation::flushMonitors() const {
-  for (const MonitorSlot& m : monitors_) m.series.flush();
+void Simulation::flushMonitors() {
+  for (MonitorSlot& m : monitors_) m.series.flush();
 }
 
 RunStatus Simulation::run() {
@@ -380,6 +384,12 @@ RunStatus Simulation::run() {
     sampleMonitors(true);
     if (settings_.outputInterval > 0.0) writeOutput();
   }
+  // The monitor CSVs follow the run: written now (on a restart, without the rows the run wrote
+  // after its checkpoint, which it samples again), then at least every progress_interval of wall
+  // time and with each checkpoint, so a user watching a long run, or one whose run dies, has the
+  // rows up to a few seconds ago. Each write is atomic (io/csv_series.hpp).
+  flushMonitors();
+  WallClockInterval monitorWrites(settings_.progressInterval);
   long long nextCheckpointStep =
       settings_.checkpointInterval > 0 ? (step_ / settings_.checkpointInterval + 1) * settings_.checkpointInterval : -1;
   const double outputTolerance = 0.5 * settings_.demStep;
@@ -399,6 +409,10 @@ RunStatus Simulation::run() {
       return RunStatus::Interrupted;
     }
     progress.update(time(), step_);
+    if (monitorWrites.due()) {
+      ScopedPhase timer(appTimers_, Phase::Output);
+      flushMonitors();
+    }
   }
   saveGoodState();
   progress.finish(time());

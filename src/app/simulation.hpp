@@ -40,7 +40,7 @@ struct CaseSettings {
   bool writeParticles = true;
   bool writeFluid = true;
   long long checkpointInterval = 0; // DEM steps, 0 = only on signals and at the end
-  double progressInterval = 10.0;   // s of wall time between plain progress lines
+  double progressInterval = 10.0;   // s of wall time between plain progress lines and monitor CSV writes
   long long healthCheckInterval = 1;
 
   static CaseSettings read(Params& root, const std::string& caseFile);
@@ -97,7 +97,7 @@ class Simulation {
  private:
   void writeOutput();
   void sampleMonitors(bool force);
-  void flushMonitors() const;
+  void flushMonitors();
   /// Health check, checkpoint, monitor files: the state a restart or a divergence falls back to.
   void saveGoodState();
   void checkHealth() const;

@@ -19,16 +19,20 @@ void CsvSeries::addRow(double time, const std::vector<double>& values) {
   std::string row = fmt::format("{:.12g}", time);
   for (double v : values) row += fmt::format(",{:.12g}", v);
   rows_.push_back(std::move(row));
+  changed_ = true;
 }
 
-void CsvSeries::flush() const {
+void CsvSeries::flush() {
+  if (!changed_) return;
   std::string out = header_ + "\n";
   for (const std::string& r : rows_) out += r + "\n";
   writeFileAtomically(path_, out);
+  changed_ = false;
 }
 
 void CsvSeries::resumeFrom(double time) {
   rows_.clear();
+  changed_ = true;
   if (!std::filesystem::exists(path_)) return;
   std::istringstream lines(readFile(path_));
   std::string line;

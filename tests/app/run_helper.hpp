@@ -1,13 +1,18 @@
 #pragma once
 // Runs the grainflow executable as a user would and captures its exit code and output.
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace gf::testing {
 
@@ -58,6 +63,64 @@ inline std::string readAll(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
+
+/// The grainflow executable started in the background with `arguments` (stdout and stderr to
+/// `logFile`), for tests that watch a run while it goes. The destructor kills it if it still runs.
+class BackgroundGrainflow {
+ public:
+  BackgroundGrainflow(const std::vector<std::string>& arguments, const std::string& logFile) {
+    std::vector<std::string> words{GRAINFLOW_BINARY};
+    words.insert(words.end(), arguments.begin(), arguments.end());
+    std::vector<char*> argv;
+    for (std::string& w : words) argv.push_back(w.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t files;
+    ::posix_spawn_file_actions_init(&files);
+    ::posix_spawn_file_actions_addopen(&files, STDOUT_FILENO, logFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::posix_spawn_file_actions_adddup2(&files, STDOUT_FILENO, STDERR_FILENO);
+    if (::posix_spawn(&pid_, argv[0], &files, nullptr, argv.data(), environ) != 0) pid_ = -1;
+    ::posix_spawn_file_actions_destroy(&files);
+  }
+  ~BackgroundGrainflow() {
+    if (running()) {
+      ::kill(pid_, SIGKILL);
+      wait();
+    }
+  }
+  BackgroundGrainflow(const BackgroundGrainflow&) = delete;
+  BackgroundGrainflow& operator=(const BackgroundGrainflow&) = delete;
+
+  bool started() const { return pid_ > 0; }
+  /// Still running (not yet exited and reaped).
+  bool running() {
+    if (pid_ <= 0 || exited_) return false;
+    int status = 0;
+    const pid_t done = ::waitpid(pid_, &status, WNOHANG);
+    if (done == 0) return true;
+    record(done == pid_ ? status : -1);
+    return false;
+  }
+  void signal(int sig) const {
+    if (pid_ > 0 && !exited_) ::kill(pid_, sig);
+  }
+  /// Waits for the exit; the exit code, or -1 if a signal ended the process.
+  int wait() {
+    if (pid_ > 0 && !exited_) {
+      int status = 0;
+      record(::waitpid(pid_, &status, 0) == pid_ ? status : -1);
+    }
+    return exitCode_;
+  }
+
+ private:
+  void record(int status) {  // (-1: waitpid failed)
+    exited_ = true;
+    exitCode_ = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  pid_t pid_ = -1;
+  bool exited_ = false;
+  int exitCode_ = -1;
+};
 
 inline std::string sourcePath(const std::string& relative) { return std::string(GRAINFLOW_SOURCE_DIR) + "/" + relative; }
 
