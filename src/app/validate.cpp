@@ -60,6 +60,9 @@ class ValidationRun {
       : options_(options), items_(std::move(items)), repository_(std::move(repository)), outcomes_(items_.size()),
         extracted_(items_.size()), failures_(items_.size()), rowsPerItem_(items_.size()) {}
 
+  /// Full mode over all items rewrites docs/validation.md.
+  bool writesDocs() const { return !options_.quick && options_.names.empty() && options_.writeDocs; }
+
   void plan();
   /// Returns false if interrupted by SIGINT/SIGTERM.
   bool execute();
@@ -90,6 +93,7 @@ class ValidationRun {
   std::vector<std::vector<Row>> rowsPerItem_;
   std::vector<Row> rows_;
   std::vector<std::string> plotSpecs_;
+  Provenance provenance_;  // read before the runs: the tree they ran from
 };
 
 PlannedRun ValidationRun::planRun(std::size_t i, std::size_t k, const std::string& caseText) const {
@@ -123,6 +127,14 @@ PlannedRun ValidationRun::planRun(std::size_t i, std::size_t k, const std::strin
 }
 
 void ValidationRun::plan() {
+  if (writesDocs()) {
+    provenance_ = treeProvenance(repository_.string());
+    if (!provenance_.changes.empty()) {
+      std::printf("note: %zu uncommitted change(s) in %s (first: %s); docs/validation.md will say so. For a report of a "
+                  "clean commit, commit them (or run from a clean checkout) and rerun.\n",
+                  provenance_.changes.size(), repository_.c_str(), provenance_.changes.front().c_str());
+    }
+  }
   for (std::size_t i = 0; i < items_.size(); ++i) {
     const Item& item = items_[i];
     const std::size_t runs = item.runsFor(options_.quick).size();
@@ -188,14 +200,17 @@ void ValidationRun::compare() {
     const Item& item = items_[i];
     const auto& runs = item.runsFor(options_.quick);
     const std::string itemDirectory = (fs::path(options_.outputDirectory) / item.name).string();
+    std::vector<Quantity> quantities;
+    std::vector<std::vector<Row>> rowsPerQuantity;
     for (std::size_t q = 0; q < item.quantities.size(); ++q) {
       Quantity quantity = item.quantities[q];
       quantity.tolerance = quantity.toleranceFor(options_.quick);  // quick_tolerance in --quick mode
-      const auto rows = compareQuantity(item, quantity, runs, extracted_[i][q], failures_[i]);
-      rowsPerItem_[i].insert(rowsPerItem_[i].end(), rows.begin(), rows.end());
-      if (options_.plots)
-        outcomes_[i].plots.push_back(writePlotSpec(item, quantity, runs, extracted_[i][q], rows, itemDirectory, plotSpecs_));
+      rowsPerQuantity.push_back(compareQuantity(item, quantity, runs, extracted_[i][q], failures_[i]));
+      rowsPerItem_[i].insert(rowsPerItem_[i].end(), rowsPerQuantity.back().begin(), rowsPerQuantity.back().end());
+      quantities.push_back(std::move(quantity));
     }
+    if (options_.plots)
+      outcomes_[i].plots = writeItemPlotSpecs(item, quantities, runs, extracted_[i], rowsPerQuantity, itemDirectory, plotSpecs_);
     rows_.insert(rows_.end(), rowsPerItem_[i].begin(), rowsPerItem_[i].end());
   }
   std::printf("\n%s\n", textTable(rows_).c_str());
@@ -225,9 +240,9 @@ void ValidationRun::plot() {
 
 int ValidationRun::finish() {
   const double wall = secondsSince(start_);
-  if (!options_.quick && options_.names.empty() && options_.writeDocs)
+  if (writesDocs())
     writeDocs(options_.docsDirectory.empty() ? (repository_ / "docs").string() : options_.docsDirectory, repository_.string(), items_,
-              rowsPerItem_, outcomes_, wall, threadCount());
+              rowsPerItem_, outcomes_, wall, threadCount(), provenance_);
   std::size_t passed = 0;
   for (const Row& r : rows_) passed += r.pass() ? 1 : 0;
   std::printf("%zu of %zu comparison(s) passed, %zu failed; wall time %.1f s\n", passed, rows_.size(), rows_.size() - passed, wall);

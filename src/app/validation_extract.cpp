@@ -138,20 +138,46 @@ Comparison compareValue(double computed, double reference, const Tolerance& tole
   return c;
 }
 
-std::optional<Comparison> compareCurve(const Series& computed, const Series& reference, const Tolerance& tolerance) {
+std::vector<std::optional<Comparison>> compareProfile(const Series& computed, const Series& reference, const Tolerance& tolerance) {
   double scale = 0.0;
   for (double v : reference.y) scale = std::max(scale, std::abs(v));
-  std::optional<Comparison> worst;
+  std::vector<std::optional<Comparison>> out;
   for (std::size_t i = 0; i < reference.x.size(); ++i) {
     const auto value = interpolate(computed, reference.x[i]);
-    if (!value) continue;
+    if (!value) {
+      out.emplace_back();
+      continue;
+    }
     Comparison c{reference.y[i], *value, *value - reference.y[i], false};
     if (tolerance.relative) c.error = scale > 0.0 ? c.error / scale : (c.error == 0.0 ? 0.0 : INFINITY);
     if (!std::isfinite(c.error)) c.error = INFINITY;
-    if (!worst || !(std::abs(c.error) <= std::abs(worst->error))) worst = c;
+    c.pass = std::isfinite(c.error) && std::abs(c.error) <= tolerance.value;
+    out.push_back(c);
   }
-  if (worst) worst->pass = std::isfinite(worst->error) && std::abs(worst->error) <= tolerance.value;
+  return out;
+}
+
+std::optional<Comparison> compareCurve(const Series& computed, const Series& reference, const Tolerance& tolerance) {
+  std::optional<Comparison> worst;
+  for (const auto& c : compareProfile(computed, reference, tolerance))
+    if (c && (!worst || !(std::abs(c->error) <= std::abs(worst->error)))) worst = c;
   return worst;
+}
+
+Series lastProfile(const std::vector<double>& time, const std::vector<double>& position, const std::vector<double>& value) {
+  if (time.empty() || time.size() != position.size() || time.size() != value.size())
+    throw std::invalid_argument("empty or inconsistent profile table");
+  const double last = time.back();  // rows of one sample carry the same time text, hence the same number
+  std::vector<std::pair<double, double>> points;
+  for (std::size_t i = 0; i < time.size(); ++i)
+    if (time[i] == last) points.emplace_back(position[i], value[i]);
+  std::stable_sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  Series out;
+  for (const auto& [x, y] : points) {
+    out.x.push_back(x);
+    out.y.push_back(y);
+  }
+  return out;
 }
 
 }  // namespace gf::app::validation

@@ -68,4 +68,15 @@ Comparison compareValue(double computed, double reference, const Tolerance& tole
 /// error is divided by max |yr|). nullopt if no reference point lies inside the computed range.
 std::optional<Comparison> compareCurve(const Series& computed, const Series& reference, const Tolerance& tolerance);
 
+/// The last sample of a long-format table, where the rows of one sample share its time (a
+/// profile along a line: one row per cell): the (position, value) pairs of the rows whose time
+/// equals the last row's, sorted by position.
+Series lastProfile(const std::vector<double>& time, const std::vector<double>& position, const std::vector<double>& value);
+
+/// A computed profile against reference points (xr, yr), one comparison per point: the profile
+/// interpolated linearly at xr, the error relative to max |yr| when the tolerance is relative (as
+/// for curves, so that points where the profile crosses zero are not singular); nullopt for a
+/// point outside the computed range (a wall value beyond the last cell centre).
+std::vector<std::optional<Comparison>> compareProfile(const Series& computed, const Series& reference, const Tolerance& tolerance);
+
 }  // namespace gf::app::validation

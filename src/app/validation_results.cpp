@@ -73,10 +73,28 @@ Extracted extract(const Quantity& q, const std::string& runDirectory) {
   }
   e.xLabel = table.header[ix];
   e.yLabel = table.header[iy];
-  for (const auto& row : table.rows) {
-    if (static_cast<int>(row.size()) <= std::max(ix, iy)) continue;
-    e.curve.x.push_back(row[ix]);
-    e.curve.y.push_back(row[iy]);
+  if (q.operation == Operation::Profile) {
+    // Long-format CSV (fluid_line_profile): the rows of the last sample time.
+    const int it = columnIndex(table.header, "time");
+    if (it < 0 || table.rows.empty()) {
+      e.problem = it < 0 ? fmt::format("no column 'time' in {}.csv", q.monitor) : fmt::format("{}.csv has no rows", q.monitor);
+      return e;
+    }
+    std::vector<double> time, position, value;
+    for (const auto& row : table.rows) {
+      if (static_cast<int>(row.size()) <= std::max({it, ix, iy})) continue;
+      time.push_back(row[it]);
+      position.push_back(row[ix]);
+      value.push_back(row[iy]);
+    }
+    e.curve = lastProfile(time, position, value);
+    e.profileTime = time.back();
+  } else {
+    for (const auto& row : table.rows) {
+      if (static_cast<int>(row.size()) <= std::max(ix, iy)) continue;
+      e.curve.x.push_back(row[ix]);
+      e.curve.y.push_back(row[iy]);
+    }
   }
   Series s = q.window ? window(e.curve, q.window->first, q.window->second) : e.curve;
   if (s.x.empty()) {
@@ -84,7 +102,7 @@ Extracted extract(const Quantity& q, const std::string& runDirectory) {
                          : fmt::format("{}.csv has no rows", q.monitor);
     return e;
   }
-  if (q.operation == Operation::Curve) {
+  if (q.operation == Operation::Curve || q.operation == Operation::Profile) {
     for (double& y : s.y) y = q.scale * y + q.offset;
     e.curve = s;
     return e;
@@ -105,7 +123,7 @@ std::vector<Row> compareQuantity(const Item& item, const Quantity& q, const std:
   std::vector<Row> rows;
   const std::string opName = operationName(q.operation);
   if (q.across != AcrossRuns::None) {
-    Row row{item.name, fmt::format("runs over {}", item.sweepKey), q.name, acrossRunsName(q.across) + " of " + opName, std::nullopt, q.tolerance, ""};
+    Row row{item.name, fmt::format("runs over {}", item.sweepKey), q.name, acrossRunsName(q.across) + " of " + opName, std::nullopt, q.tolerance, "", std::nullopt};
     std::vector<double> xs, ys;
     for (std::size_t k = 0; k < runs.size(); ++k) {
       if (!extracted[k].value) {
@@ -128,8 +146,27 @@ std::vector<Row> compareQuantity(const Item& item, const Quantity& q, const std:
     return rows;
   }
   for (std::size_t k = 0; k < runs.size(); ++k) {
-    Row row{item.name, runs[k].label, q.name, opName, std::nullopt, q.tolerance, ""};
+    Row row{item.name, runs[k].label, q.name, opName, std::nullopt, q.tolerance, "", std::nullopt};
     const Extracted& e = extracted[k];
+    if (q.operation == Operation::Profile && runFailures[k].empty() && e.problem.empty()) {
+      // One row per reference point inside the sampled range; the points beyond it (wall values)
+      // are drawn, not compared.
+      const auto comparisons = compareProfile(e.curve, q.reference.data, q.tolerance);
+      const std::size_t before = rows.size();
+      for (std::size_t i = 0; i < comparisons.size(); ++i) {
+        if (!comparisons[i]) continue;
+        Row point = row;
+        point.quantity = fmt::format("{}: {} = {:g}", q.name, q.xColumn, q.reference.data.x[i]);
+        point.comparison = comparisons[i];
+        point.at = q.reference.data.x[i];
+        rows.push_back(point);
+      }
+      if (rows.size() == before) {
+        row.note = fmt::format("no reference point inside the sampled range [{:g}, {:g}] of {}", e.curve.x.front(), e.curve.x.back(), q.xColumn);
+        rows.push_back(row);
+      }
+      continue;
+    }
     if (!runFailures[k].empty()) {
       row.note = runFailures[k];
     } else if (!e.problem.empty()) {

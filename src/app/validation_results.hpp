@@ -12,7 +12,8 @@ namespace gf::app::validation {
 
 struct Extracted {
   std::optional<double> value;  // single-number operations
-  Series curve;                 // the compared (operation: curve) or plotted series
+  Series curve;                 // the compared (operation: curve or profile) or plotted series
+  std::optional<double> profileTime;  // operation: profile: the sample time of the profile
   std::string xLabel, yLabel;   // CSV headers with units
   std::string problem;          // why nothing could be extracted
 };
@@ -22,6 +23,7 @@ struct Row {
   std::optional<Comparison> comparison;
   Tolerance tolerance;
   std::string note;  // curve: worst point; failure reason
+  std::optional<double> at;  // profile: the reference point's position
   bool pass() const { return comparison && comparison->pass; }
 };
 

@@ -22,7 +22,8 @@ const std::vector<std::pair<std::string, Operation>>& operationNames() {
       {"min", Operation::Min},               {"max", Operation::Max},
       {"mean", Operation::Mean},             {"value_at", Operation::ValueAt},
       {"first_crossing", Operation::FirstCrossing}, {"duration_above", Operation::DurationAbove},
-      {"ratio", Operation::Ratio},           {"curve", Operation::Curve}};
+      {"ratio", Operation::Ratio},           {"curve", Operation::Curve},
+      {"profile", Operation::Profile}};
   return names;
 }
 
@@ -203,6 +204,27 @@ Series readReferenceCsv(const Map& ref, const std::string& path, const std::stri
   return data;
 }
 
+/// reference.points: [[x, y], ...] in any order, returned sorted by x.
+Series readReferencePoints(const Map& ref) {
+  const YAML::Node list = ref.raw("points");
+  if (!list.IsSequence() || list.size() == 0) ref.fail("points", "no list", "a non-empty list of [x, y] pairs");
+  std::vector<std::pair<double, double>> points;
+  for (const YAML::Node& pair : list) {
+    double x = 0.0, y = 0.0;
+    if (!pair.IsSequence() || pair.size() != 2 || !YAML::convert<double>::decode(pair[0], x) ||
+        !YAML::convert<double>::decode(pair[1], y))
+      ref.fail("points", "'" + dumpYaml(pair) + "'", "[x, y] pairs of numbers");
+    points.emplace_back(x, y);
+  }
+  std::stable_sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  Series out;
+  for (const auto& [x, y] : points) {
+    out.x.push_back(x);
+    out.y.push_back(y);
+  }
+  return out;
+}
+
 PlotSpec readPlot(const Map& q);
 Tolerance readTolerance(const Map& q, const std::string& key, const Quantity& quantity);
 
@@ -219,7 +241,7 @@ Quantity readQuantity(const Map& q, const std::string& directory, bool hasSweep)
     out.numerator = readOperation(q, "numerator", "final");
     out.denominator = readOperation(q, "denominator", "initial");
     for (Operation op : {out.numerator, out.denominator})
-      if (op == Operation::Ratio || op == Operation::Curve)
+      if (op == Operation::Ratio || op == Operation::Curve || op == Operation::Profile)
         q.fail("numerator", "'" + operationName(op) + "'", "a single-number operation (final, max, ...)");
   } else if (q.has("numerator") || q.has("denominator")) {
     q.fail(q.has("numerator") ? "numerator" : "denominator", "a ratio part", "operation: ratio");
@@ -239,23 +261,34 @@ Quantity readQuantity(const Map& q, const std::string& directory, bool hasSweep)
   for (const auto& [name, kind] : acrossRunsNames())
     if (name == across) out.across = kind;
   if (out.across != AcrossRuns::None && !hasSweep) q.fail("across_runs", "'" + across + "' without a sweep", "a sweep (at least two runs)");
-  if (out.across != AcrossRuns::None && out.operation == Operation::Curve) q.fail("across_runs", "'" + across + "' with operation: curve", "a single-number operation");
+  const bool curveLike = out.operation == Operation::Curve || out.operation == Operation::Profile;
+  if (out.across != AcrossRuns::None && curveLike)
+    q.fail("across_runs", "'" + across + "' with operation: " + operationName(out.operation), "a single-number operation");
+  if (out.operation == Operation::Profile && !q.has("x_column"))
+    q.fail("operation", "profile without x_column", "x_column: the position column of the profile (e.g. y of a line along y)");
 
   const Map ref = q.map("reference");
-  ref.allowOnly({"value", "file", "x", "y", "source"});
+  ref.allowOnly({"value", "file", "x", "y", "points", "source"});
   out.reference.source = ref.text("source");
-  if (ref.has("value") == ref.has("file")) ref.fail("value", "both or neither of 'value' and 'file'", "exactly one of them");
+  if (int(ref.has("value")) + int(ref.has("file")) + int(ref.has("points")) != 1)
+    ref.fail("value", "none or several of 'value', 'file' and 'points'", "exactly one of them");
   if (ref.has("value")) {
     out.reference.value = ref.real("value");
-    if (out.operation == Operation::Curve) ref.fail("value", "a single value for operation: curve", "file: with the reference points");
+    if (curveLike)
+      ref.fail("value", "a single value for operation: " + operationName(out.operation), "points: [[x, y], ...] or file: with the reference points");
+  } else if (ref.has("points")) {
+    out.reference.data = readReferencePoints(ref);
+    if (!curveLike && !hasSweep)
+      ref.fail("points", "reference points for a single number without a sweep", "value: (or a sweep, or operation: curve or profile)");
+    if (out.across != AcrossRuns::None) ref.fail("points", "reference points for across_runs", "value: (the expected order)");
   } else {
     out.reference.file = (fs::path(directory) / ref.text("file")).string();
     out.reference.xColumn = ref.text("x");
     out.reference.yColumn = ref.text("y");
     if (!fs::exists(out.reference.file)) ref.fail("file", "'" + out.reference.file + "' (missing)", "an existing CSV file");
     out.reference.data = readReferenceCsv(ref, out.reference.file, out.reference.xColumn, out.reference.yColumn);
-    if (out.operation != Operation::Curve && !hasSweep)
-      ref.fail("file", "a reference curve for a single number without a sweep", "value: (or a sweep, or operation: curve)");
+    if (!curveLike && !hasSweep)
+      ref.fail("file", "a reference curve for a single number without a sweep", "value: (or a sweep, or operation: curve or profile)");
     if (out.across != AcrossRuns::None) ref.fail("file", "a reference curve for across_runs", "value: (the expected order)");
   }
 
@@ -287,8 +320,11 @@ PlotSpec readPlot(const Map& q) {
   PlotSpec out;
   if (q.has("plot")) {
     const Map plot = q.map("plot");
-    plot.allowOnly({"x_label", "y_label", "log_x", "log_y", "reference_style"});
+    plot.allowOnly({"x_label", "y_label", "log_x", "log_y", "reference_style", "reference_label", "figure", "swap_axes"});
+    out.referenceLabel = plot.text("reference_label", std::string("reference"));
     out.referenceStyle = plot.choice("reference_style", {"auto", "points", "line"}, "auto");
+    out.figure = plot.text("figure", std::string());
+    out.swapAxes = plot.boolean("swap_axes", false);
     out.xLabel = plot.text("x_label", std::string());
     out.yLabel = plot.text("y_label", std::string());
     out.logX = plot.boolean("log_x", false);

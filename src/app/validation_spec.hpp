@@ -24,7 +24,9 @@ struct RunPoint {
   std::vector<Override> overrides;
 };
 
-enum class Operation { Final, Initial, Min, Max, Mean, ValueAt, FirstCrossing, DurationAbove, Ratio, Curve };
+/// Profile: the column over x_column (a position) in the rows of the last sample time of a
+/// long-format CSV (fluid_line_profile), compared at each reference point.
+enum class Operation { Final, Initial, Min, Max, Mean, ValueAt, FirstCrossing, DurationAbove, Ratio, Curve, Profile };
 /// One comparison for a whole sweep: log-log slope, observed (Richardson) order of the last three
 /// runs, or the smallest increase between consecutive runs.
 enum class AcrossRuns { None, LogLogSlope, RichardsonOrder, MinIncrement };
@@ -38,16 +40,19 @@ std::string operationName(Operation op);
 
 struct Reference {
   std::optional<double> value;  // a single number, or ...
-  std::string file;             // ... a CSV (path relative to the item directory) with columns x, y
+  std::string file;             // ... a CSV (path relative to the item directory) with columns x, y, or ...
   std::string xColumn, yColumn;
-  Series data;                  // the CSV columns, loaded
+  Series data;                  // ... points (x, y) given in validation.yaml: the CSV columns or the points, sorted by x
   std::string source;           // paper/table/figure, seed file + line, or the formula it was computed from
 };
 
 struct PlotSpec {
   std::string xLabel, yLabel;
   bool logX = false, logY = false;
-  std::string referenceStyle = "auto";  // auto (points for curves, line for sweeps), points, line
+  std::string referenceStyle = "auto";  // auto (points for curves and profiles, line for sweeps), points, line
+  std::string figure;                   // quantities of an item with the same figure share one PNG, a panel each
+  bool swapAxes = false;                // x_column on the vertical axis (a profile along a vertical line, u(y))
+  std::string referenceLabel = "reference";  // legend entry of the reference (e.g. the paper)
 };
 
 struct Quantity {

@@ -133,3 +133,49 @@ TEST(Extract, CompareCurveReportsTheWorstPointInsideTheRange) {
   EXPECT_TRUE(rel->pass);
   EXPECT_FALSE(compareCurve(computed, Series{{7.0}, {1.0}}, {1.0, false}).has_value());
 }
+
+TEST(Extract, LastProfileTakesTheRowsOfTheLastSampleSortedByPosition) {
+  // Long format as fluid_line_profile writes it: three cells per sample, samples at t = 0, 1, 2.
+  const std::vector<double> t = {0, 0, 0, 1, 1, 1, 2, 2, 2};
+  const std::vector<double> y = {0.5, 1.5, 2.5, 0.5, 1.5, 2.5, 2.5, 0.5, 1.5};  // (any order within a sample)
+  const std::vector<double> u = {9, 9, 9, 8, 8, 8, 30, 10, 20};
+  const Series p = lastProfile(t, y, u);
+  ASSERT_EQ(p.x.size(), 3u);
+  EXPECT_EQ(p.x, (std::vector<double>{0.5, 1.5, 2.5}));
+  EXPECT_EQ(p.y, (std::vector<double>{10, 20, 30}));
+  // One sample only; a time series (one row per time) gives its last row.
+  EXPECT_EQ(lastProfile({4, 4}, {1, 0}, {7, 6}).y, (std::vector<double>{6, 7}));
+  EXPECT_EQ(lastProfile({0, 1, 2}, {5, 5, 5}, {1, 2, 3}).y, (std::vector<double>{3}));
+  EXPECT_THROW(lastProfile({}, {}, {}), std::invalid_argument);
+  EXPECT_THROW(lastProfile({0, 1}, {0}, {0, 1}), std::invalid_argument);
+}
+
+TEST(Extract, CompareProfileGivesOneComparisonPerReferencePoint) {
+  // A parabola sampled at cell centres y = 0.125, 0.375, ...; the reference at the walls is outside.
+  Series computed;
+  for (int j = 0; j < 4; ++j) {
+    const double y = (j + 0.5) / 4;
+    computed.x.push_back(y);
+    computed.y.push_back(y * (1 - y));
+  }
+  const Series reference{{0.0, 0.125, 0.25, 0.5, 1.0}, {0.0, 0.109375, 0.1875, 0.26, 0.0}};
+  const auto c = compareProfile(computed, reference, {0.005, false});
+  ASSERT_EQ(c.size(), 5u);
+  EXPECT_FALSE(c[0].has_value());  // y = 0 beyond the first cell centre
+  EXPECT_FALSE(c[4].has_value());
+  ASSERT_TRUE(c[1] && c[2] && c[3]);
+  EXPECT_NEAR(c[1]->error, 0.0, 1e-15);  // on a sample
+  EXPECT_TRUE(c[1]->pass);
+  // y = 0.25 between samples: linear interpolation, (0.109375 + 0.234375) / 2 = 0.171875 against 0.1875.
+  EXPECT_NEAR(c[2]->computed, 0.171875, 1e-15);
+  EXPECT_NEAR(c[2]->error, -0.015625, 1e-15);
+  EXPECT_FALSE(c[2]->pass);
+  EXPECT_NEAR(c[3]->error, 0.234375 - 0.26, 1e-15);  // y = 0.5 between 0.375 and 0.625 (equal values)
+  // Relative tolerance: errors relative to max |reference| = 0.26, as for curves (no division by a zero).
+  const auto r = compareProfile(computed, reference, {0.1, true});
+  EXPECT_NEAR(r[2]->error, -0.015625 / 0.26, 1e-15);
+  EXPECT_TRUE(r[2]->pass);
+  EXPECT_NEAR(r[3]->error, (0.234375 - 0.26) / 0.26, 1e-15);
+  EXPECT_TRUE(r[3]->pass);  // -9.9 % of the peak
+  EXPECT_FALSE(compareProfile(computed, reference, {0.09, true})[3]->pass);
+}

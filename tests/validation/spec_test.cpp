@@ -152,3 +152,56 @@ TEST(ValidationSpec, ColumnNamesIgnoreUnits) {
   EXPECT_EQ(columnUnit(header[1]), "m/s");
   EXPECT_EQ(columnUnit(header[2]), "");
 }
+
+TEST(ValidationSpec, ProfileWithReferencePointsAndSharedFigure) {
+  const std::string profile = R"yaml(title: Profiles
+quantities:
+  - name: u on x = 0.5
+    monitor: line
+    column: velocity_x
+    x_column: y
+    operation: profile
+    reference:
+      points: [[0.9766, 0.84123], [0.0547, -0.03717], [0.5, -0.20581]]
+      source: "Ghia, Ghia & Shin (1982), Table I"
+    tolerance: {absolute: 0.01}
+    plot: {figure: centrelines, swap_axes: true, reference_label: "Ghia et al. (1982)"}
+  - name: v on y = 0.5
+    monitor: line_x
+    column: velocity_y
+    x_column: x
+    operation: profile
+    reference: {file: ref.csv, x: E, y: top, source: "made up"}
+    tolerance: {absolute: 0.01}
+    plot: {figure: centrelines}
+)yaml";
+  TempDir dir;
+  const Item item = loadItem(itemDir(dir, profile));
+  ASSERT_EQ(item.quantities.size(), 2u);
+  const Quantity& u = item.quantities[0];
+  EXPECT_EQ(u.operation, Operation::Profile);
+  EXPECT_EQ(u.xColumn, "y");
+  EXPECT_EQ(u.reference.data.x, (std::vector<double>{0.0547, 0.5, 0.9766}));  // sorted by x
+  EXPECT_EQ(u.reference.data.y, (std::vector<double>{-0.03717, -0.20581, 0.84123}));
+  EXPECT_EQ(u.plot.figure, "centrelines");
+  EXPECT_TRUE(u.plot.swapAxes);
+  EXPECT_EQ(u.plot.referenceLabel, "Ghia et al. (1982)");
+  EXPECT_FALSE(item.quantities[1].plot.swapAxes);
+  EXPECT_EQ(item.quantities[1].plot.referenceLabel, "reference");
+  EXPECT_EQ(item.quantities[1].reference.data.x.size(), 2u);
+
+  EXPECT_NE(loadError(replaced(profile, "    x_column: y\n", "")).find("profile without x_column"), std::string::npos);
+  EXPECT_NE(loadError(replaced(profile, "reference: {file: ref.csv, x: E, y: top, source: \"made up\"}",
+                               "reference: {value: 1.0, source: \"made up\"}"))
+                .find("a single value for operation: profile"),
+            std::string::npos);
+  EXPECT_NE(loadError(replaced(profile, "[0.5, -0.20581]]", "[0.5]]")).find("[x, y] pairs"), std::string::npos);
+  EXPECT_NE(loadError(replaced(profile, "source: \"Ghia, Ghia & Shin (1982), Table I\"", "value: 1.0\n      source: \"x\""))
+                .find("exactly one of them"),
+            std::string::npos);
+  // Points for a single number without a sweep make no sense either.
+  EXPECT_NE(loadError(replaced(profile, "    operation: profile\n    reference:\n      points",
+                               "    operation: final\n    reference:\n      points"))
+                .find("reference points for a single number"),
+            std::string::npos);
+}

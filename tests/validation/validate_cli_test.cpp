@@ -9,6 +9,7 @@
 #include "app/plot.hpp"
 #include "app/validate.hpp"
 #include "app/validation_spec.hpp"
+#include "io/csv_series.hpp"
 
 using gf::testing::grainflow;
 using gf::testing::readAll;
@@ -160,4 +161,110 @@ TEST(PlotCli, WritesOnePngPerMonitorCsvAndValidationFigures) {
   const auto v = grainflow("validate --threads 1 --dir " + dir.file("validation") + " --output " + dir.file("out") + " --no-docs");
   ASSERT_EQ(v.exitCode, 0) << v.output;
   EXPECT_EQ(readAll(dir.file("out/tiny/tiny_drop.png")).substr(1, 3), "PNG") << v.output;
+}
+
+namespace {
+// A uniform stream in a periodic box stays uniform: its profiles are known exactly.
+const std::string kProfileCase = R"(domain: {min: [0, 0, 0], max: [0.5, 1.0, 0.1], periodic: [1, 1, 1]}
+gravity: [0, 0, 0]
+materials: [{name: unused, density: 1000.0}]
+time: {end: 0.2, dem_step: 0.05}
+fluid: {density: 1.0, viscosity: 0.01, cells: [4, 8, 1], initial: {velocity: [0.3, 0.0, 0.0]}}
+monitors:
+  - {type: fluid_line_profile, name: across, line_axis: y, line_point: [0.25, 0.5, 0.05], interval: 0.1}
+  - {type: fluid_line_profile, name: along, line_axis: x, line_point: [0.25, 0.5, 0.05], interval: 0.1}
+)";
+const std::string kProfileItem = R"yaml(title: Uniform stream profiles
+quantities:
+  - name: u(y)
+    monitor: across
+    column: velocity_x
+    x_column: y
+    operation: profile
+    reference: {points: [[0.0, 0.3], [0.5, 0.3], [0.8125, 0.3], [1.0, 0.3]], source: "uniform initial stream"}
+    tolerance: {absolute: 1.0e-12}
+    plot: {figure: both profiles, swap_axes: true}
+  - name: v(x)
+    monitor: along
+    column: velocity_y
+    x_column: x
+    operation: profile
+    reference: {points: [[0.1875, 0.0]], source: "uniform initial stream"}
+    tolerance: {absolute: 1.0e-12}
+    plot: {figure: both profiles}
+)yaml";
+}  // namespace
+
+TEST(ValidateCli, ProfileComparesEachReferencePointInsideTheLineOnOneFigure) {
+  TempDir dir;
+  fs::create_directories(dir.path() / "validation" / "stream");
+  dir.write("validation/stream/validation.yaml", kProfileItem);
+  dir.write("validation/stream/case.yaml", kProfileCase);
+  const auto r = grainflow("validate --threads 1 --no-docs --dir " + dir.file("validation") + " --output " + dir.file("out"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  // Wall values y = 0 and y = 1 lie beyond the cell centres 1/16 ... 15/16: drawn, not compared.
+  EXPECT_NE(r.output.find("u(y): y = 0.5 "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("u(y): y = 0.8125 "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("v(x): x = 0.1875 "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("3 of 3 comparison(s) passed"), std::string::npos) << r.output;
+  // The monitor wrote one row per cell at each of its three samples (t = 0, 0.1, 0.2).
+  const auto table = gf::io::readCsv(dir.file("out/stream/run/across.csv"));
+  EXPECT_EQ(table.header.front(), "time [s]");
+  EXPECT_EQ(table.header[1], "y [m]");
+  ASSERT_EQ(table.rows.size(), 24u);
+  EXPECT_DOUBLE_EQ(table.rows[23][0], 0.2);
+  EXPECT_DOUBLE_EQ(table.rows[16][0], 0.2);
+  EXPECT_DOUBLE_EQ(table.rows[15][0], 0.1);
+  // Both quantities share one figure: one spec with two panels, no PNG per point.
+  const std::string spec = readAll(dir.file("out/stream/stream_both_profiles.plot.json"));
+  EXPECT_NE(spec.find("\"panels\""), std::string::npos);
+  EXPECT_NE(spec.find("\"swap_axes\": true"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir.file("out/stream/stream_u_y.plot.json")));
+  const gf::app::PlotTool tool = gf::app::findPlotTool(sourcePath(""));
+  if (tool.available()) {
+    EXPECT_EQ(readAll(dir.file("out/stream/stream_both_profiles.png")).substr(1, 3), "PNG") << r.output;
+    std::size_t pngs = 0;
+    for (const auto& entry : fs::directory_iterator(dir.path() / "out" / "stream")) pngs += entry.path().extension() == ".png";
+    EXPECT_EQ(pngs, 1u);
+  }
+}
+
+TEST(ValidateCli, ReportNamesTheCommitAndOnlyChangesThatAreNotItsOwnOutput) {
+  if (runShell("git --version").exitCode != 0) GTEST_SKIP() << "git not installed";
+  TempDir dir;
+  writeItem(dir, "tiny", itemYaml("{relative: 1.0e-3}"));
+  dir.write(".gitignore", "/out/\n");  // as output/ in the repository
+  fs::create_directories(dir.path() / "docs" / "img");
+  // A previous report showed old.png; the README shows kept.png.
+  dir.write("docs/validation.md", "![old](img/old.png)\n![kept](img/kept.png)\n");
+  dir.write("docs/img/old.png", "x");
+  dir.write("docs/img/kept.png", "x");
+  dir.write("README.md", "# Test\n<!-- validation-summary:begin -->\n<!-- validation-summary:end -->\n![kept](docs/img/kept.png)\n");
+  const std::string git = "git -C " + dir.path().string() + " -c user.name=test -c user.email=test@example.com ";
+  ASSERT_EQ(runShell(git + "init -q && " + git + "add -A && " + git + "commit -q -m items").exitCode, 0);
+  const std::string head = runShell(git + "rev-parse --short=12 HEAD").output.substr(0, 12);
+  const std::string validate = "validate --threads 1 --no-plots --dir " + dir.file("validation") + " --output " + dir.file("out");
+
+  auto r = grainflow(validate);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::string report = readAll(dir.file("docs/validation.md"));
+  EXPECT_NE(report.find("- Commit: `" + head + "`\n"), std::string::npos) << report;
+  EXPECT_EQ(r.output.find("uncommitted"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir.file("docs/img/old.png")));  // no longer in the report
+  EXPECT_TRUE(fs::exists(dir.file("docs/img/kept.png")));  // the README shows it
+
+  // The run rewrote docs/validation.md and README.md: a rerun does not count its own output.
+  ASSERT_NE(runShell(git + "status --porcelain").output, "");
+  r = grainflow(validate);
+  EXPECT_NE(readAll(dir.file("docs/validation.md")).find("- Commit: `" + head + "`\n"), std::string::npos);
+
+  // A changed case or a new untracked file is a change the report names, and the start says so.
+  dir.write("validation/tiny/case.yaml", kCase + "# changed\n");
+  dir.write("validation/tiny/notes.txt", "new");
+  r = grainflow(validate);
+  EXPECT_NE(r.output.find("note: 2 uncommitted change(s)"), std::string::npos) << r.output;
+  report = readAll(dir.file("docs/validation.md"));
+  EXPECT_NE(report.find("`" + head + "` (with uncommitted changes: `validation/tiny/case.yaml`, `validation/tiny/notes.txt`)"),
+            std::string::npos)
+      << report;
 }
