@@ -26,7 +26,8 @@ std::string caseFileReference() {
       "A case is one YAML file with SI units. Keys not listed here are rejected (with a suggestion), values are\n"
       "checked against the type and range below, and `grainflow check CASE.yaml` prints the case with every\n"
       "default filled in. List items are written `name[]`. A key with an empty default is required (when its\n"
-      "section is used). For model choices, each model's own keys follow the choice key.\n\n";
+      "section is used). For model choices, each model's own keys follow the choice key, and the description\n"
+      "says which models read a key: \"(type = lattice, rate)\", or \"(all types)\" when every model does.\n\n";
   std::string currentSection;
   for (const KeyDoc& k : root.documentedKeys()) {
     const std::string top = k.path.substr(0, k.path.find_first_of(".["));

@@ -106,7 +106,26 @@ struct Params::Shared {
   std::vector<ResolvedKey> resolved;
   std::vector<KeyDoc> docs;
   std::set<std::string> documentedPaths;
-  std::string documentationContext;  // e.g. "type = particle_probe" while a model documents its keys
+  /// A model of a choice whose reader is declaring keys (documentation mode), e.g. the model
+  /// "lattice" of the choice "insertion[].type".
+  struct ModelInChoice {
+    std::string choicePath;
+    std::string model;
+  };
+  std::vector<ModelInChoice> modelStack;  // outermost choice first
+  struct Choice {
+    std::string key;                  // "type"
+    std::vector<std::string> models;  // every model of it, in the registry's order
+  };
+  std::map<std::string, Choice> choices;  // by choice path
+  /// For each documented path, the help texts of its declarations, each distinct one once (models
+  /// that share a key may explain it each for itself), and the model stack of each declaration.
+  struct Declarations {
+    std::vector<std::string> helps;
+    std::vector<std::vector<ModelInChoice>> stacks;
+    std::vector<std::string> defaults;  // of each declaration ("" = required)
+  };
+  std::map<std::string, Declarations> declarations;
 };
 
 Params::Params(std::shared_ptr<Shared> shared, std::shared_ptr<Section> section)
@@ -163,7 +182,15 @@ Params Params::documentation() {
 // ---------------------------------------------------------------- helpers
 
 bool Params::documenting() const { return shared_->documenting; }
-void Params::setDocumentationContext(const std::string& context) { shared_->documentationContext = context; }
+void Params::beginModelDocumentation(std::string_view choiceKey, const std::vector<std::string>& models,
+                                     const std::string& model) {
+  const std::string choicePath = path(choiceKey);
+  shared_->choices[choicePath] = {std::string(choiceKey), models};
+  shared_->modelStack.push_back({choicePath, model});
+}
+void Params::endModelDocumentation() {
+  if (!shared_->modelStack.empty()) shared_->modelStack.pop_back();
+}
 const std::string& Params::fileName() const { return shared_->file; }
 
 std::string Params::path(std::string_view key) const {
@@ -207,10 +234,14 @@ void Params::markQueried(std::string_view key) const { section_->queried->insert
 void Params::document(const Key& k, std::string type, std::string defaultValue, std::string allowed) const {
   // In documentation mode, list items are all documented under "name[]".
   const std::string p = path(k.name);
+  Shared::Declarations& declared = shared_->declarations[p];
+  declared.stacks.push_back(shared_->modelStack);
+  declared.defaults.push_back(defaultValue);
+  if (std::find(declared.helps.begin(), declared.helps.end(), k.help) == declared.helps.end())
+    declared.helps.emplace_back(k.help);
   if (!shared_->documentedPaths.insert(p).second) return;
-  std::string help(k.help);
-  if (!shared_->documentationContext.empty()) help = "(" + shared_->documentationContext + ") " + help;
-  shared_->docs.push_back({p, std::move(type), std::move(defaultValue), std::string(k.unit), std::move(allowed), help});
+  shared_->docs.push_back(
+      {p, std::move(type), std::move(defaultValue), std::string(k.unit), std::move(allowed), std::string(k.help)});
 }
 
 void Params::record(const Key& k, std::string value, bool fromDefault) const {
@@ -499,6 +530,75 @@ void Params::checkUnknownKeys() const {
 }
 
 std::vector<ResolvedKey> Params::resolved() const { return shared_->resolved; }
-std::vector<KeyDoc> Params::documentedKeys() const { return shared_->docs; }
+namespace {
+/// Which models declare a key, from the model stacks of its declarations: for each choice, the
+/// models that declare it, unless that is every model of the choice (or the key is also declared
+/// outside the choice). "type = lattice, rate"; "all types" where every model of the choices declares
+/// it; empty for a key no model declares.
+template <class Stacks, class Choices>
+std::string declaringModels(const Stacks& declarations, const Choices& choices) {
+  std::vector<std::string> order;  // choice paths, outermost first
+  std::map<std::string, std::set<std::string>> models;
+  std::map<std::string, std::size_t> count;  // declarations inside each choice
+  for (const auto& stack : declarations)
+    for (const auto& frame : stack) {
+      if (!models.count(frame.choicePath)) order.push_back(frame.choicePath);
+      models[frame.choicePath].insert(frame.model);
+      ++count[frame.choicePath];
+    }
+  if (order.empty()) return "";
+  std::vector<std::string> parts;
+  for (const std::string& choicePath : order) {
+    const auto& choice = choices.at(choicePath);
+    const bool everyModel = models[choicePath].size() == choice.models.size() && choice.models.size() > 1;
+    if (everyModel || count[choicePath] < declarations.size()) continue;
+    std::vector<std::string> names;
+    for (const std::string& m : choice.models)  // (the registry's order)
+      if (models[choicePath].count(m)) names.push_back(m);
+    parts.push_back(choice.key + " = " + joinNames(names));
+  }
+  if (parts.empty()) return "all " + choices.at(order.back()).key + "s";
+  std::string out = parts.front();
+  for (std::size_t i = 1; i < parts.size(); ++i) out += "; " + parts[i];
+  return out;
+}
+
+/// The default of a key whose models give it different defaults: each value with the models (of
+/// the innermost choice) that use it, "0.001 (log_normal), 0.002 (rosin_rammler)"; else the first
+/// declaration's default (also for a key declared outside any model: a section read again).
+template <class Declared>
+std::string defaultsByModel(const Declared& declared) {
+  for (const auto& stack : declared.stacks)
+    if (stack.empty()) return declared.defaults.front();
+  std::vector<std::string> values;
+  std::map<std::string, std::vector<std::string>> models;
+  for (std::size_t d = 0; d < declared.defaults.size(); ++d) {
+    const std::string& value = declared.defaults[d];
+    if (!models.count(value)) values.push_back(value);
+    auto& names = models[value];
+    const std::string model = declared.stacks[d].empty() ? "" : declared.stacks[d].back().model;
+    if (!model.empty() && std::find(names.begin(), names.end(), model) == names.end()) names.push_back(model);
+  }
+  if (values.size() == 1) return values.front();
+  std::string out;
+  for (const std::string& value : values)
+    out += fmt::format("{}{} ({})", out.empty() ? "" : ", ", value.empty() ? "required" : value, joinNames(models[value]));
+  return out;
+}
+}  // namespace
+
+std::vector<KeyDoc> Params::documentedKeys() const {
+  std::vector<KeyDoc> out = shared_->docs;
+  for (KeyDoc& k : out) {
+    const Shared::Declarations& declared = shared_->declarations.at(k.path);
+    k.help.clear();
+    for (const std::string& help : declared.helps)
+      if (!help.empty()) k.help += (k.help.empty() ? "" : "; ") + help;
+    const std::string models = declaringModels(declared.stacks, shared_->choices);
+    if (!models.empty()) k.help = "(" + models + ") " + k.help;
+    k.defaultValue = defaultsByModel(declared);
+  }
+  return out;
+}
 
 }  // namespace gf

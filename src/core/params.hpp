@@ -109,9 +109,13 @@ class Params {
 
   bool has(std::string_view key) const;
   bool documenting() const;
-  /// In documentation mode, a note put before the help of every key declared until reset
-  /// (the registry uses it to say which model a key belongs to).
-  void setDocumentationContext(const std::string& context);
+  /// In documentation mode, the keys declared until the matching endModelDocumentation() belong to
+  /// model `model` of the choice `choiceKey` of this section, one of `models` (the registry calls
+  /// these around each model's reader; calls nest). documentedKeys() then says in each key's help
+  /// which models declare it: "(type = lattice)", "(type = lattice, rate)", or "(all types)".
+  void beginModelDocumentation(std::string_view choiceKey, const std::vector<std::string>& models,
+                               const std::string& model);
+  void endModelDocumentation();
   /// Full dotted path of a key in this section, e.g. "walls[1].normal".
   std::string path(std::string_view key) const;
   /// Where a key (or, when absent, this section) stands in the file.
@@ -126,6 +130,8 @@ class Params {
   void checkUnknownKeys() const;
 
   std::vector<ResolvedKey> resolved() const;
+  /// Every declared key, in the order of first declaration; a key that models of a choice declare
+  /// starts its help with the models that declare it (see beginModelDocumentation).
   std::vector<KeyDoc> documentedKeys() const;
 
  private:

@@ -57,9 +57,9 @@ class Registry {
       section.choice(modelKey, valid, defaultName);
       std::unique_ptr<Interface> first;
       for (const auto& [name, entry] : entries_) {
-        section.setDocumentationContext(std::string(modelKey.name) + " = " + name);
+        section.beginModelDocumentation(modelKey.name, valid, name);
         auto made = entry.make(section);
-        section.setDocumentationContext("");
+        section.endModelDocumentation();
         if (!first) first = std::move(made);
       }
       return first;
