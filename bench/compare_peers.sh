@@ -100,7 +100,12 @@ fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
 work=${COMPARE_PEERS_DIR:-/tmp/grainflow_compare_peers}
-mkdir -p "$work"
+mkdir -p "$work/bin"
+# one copy of the executables for the whole run (a rebuild meanwhile changes nothing here); -p keeps
+# their time, against which the kept spin-up is judged
+cp -p "$GRAINFLOW" "$work/bin/grainflow"
+cp -p "$GRAINFLOW_BENCH" "$work/bin/grainflow_bench"
+export GRAINFLOW=$work/bin/grainflow GRAINFLOW_BENCH=$work/bin/grainflow_bench
 results=$work/results.txt
 : > "$results"
 started=$(date +%s)
