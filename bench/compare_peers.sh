@@ -17,7 +17,7 @@
 #
 # --quick: fewer rounds and shorter windows; under 15 minutes on an idle 2-core machine, the
 # installation of the peers and the bubbling bed's spin-up included. The full mode takes about
-# 35 minutes there. --only: a comma-separated subset of the three problems.
+# 30 minutes there. --only: a comma-separated subset of the three problems.
 #
 # Same-problem checks (tolerances and why):
 #   - settled bed: the kinetic energy of both codes every 500 steps from the same positions, within
@@ -133,7 +133,9 @@ if wanted bubbling_bed; then
   positions=$work/bubbling_bed/spinup_$spinup/particles_000001.vtu
   for round in $(seq "$bubbling_rounds"); do
     for p in 1 2; do
-      note "bubbling bed, round $round: grainflow on $p thread(s), $grainflow_window s from rest ..."
+      spin=""
+      [ -f "$positions" ] || spin=" (first the untimed spin-up to $spinup s, 2 to 5 minutes)"
+      note "bubbling bed, round $round: grainflow on $p thread(s), $grainflow_window s from rest$spin ..."
       BENCH_DIR=$work/bubbling_bed run_logged "$work/bubbling_grainflow_$p.log" \
         bash "$here/bench/cfddem_fluidised_bed.sh" "$p" "$grainflow_window" "$spinup" rest
       note "bubbling bed, round $round: DPMFoam on $p process(es), $peer_window s from the same positions ..."
