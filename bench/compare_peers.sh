@@ -9,7 +9,7 @@
 #     one thread each (bench/icofoam_cube.sh).
 # In each pair the two codes alternate. It prints one table (markdown): per problem and process
 # count the peer's figure, grainflow's, their ratio (peer / grainflow: how many times faster
-# grainflow is) and whether the target of issue 63 is met; then the checks that both codes solved
+# grainflow is) and whether its speed target is met; then the checks that both codes solved
 # the same problem, each with its tolerance and pass / fail. Progress goes to stderr, the table to
 # stdout; the work directory keeps every log.
 #
