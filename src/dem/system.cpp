@@ -276,7 +276,7 @@ struct DriftArrays {
   const Vec3* __restrict positionAtBuild;
   const double* __restrict inverseMass;
   const double* __restrict inverseMoment;
-  std::size_t attribute;  // index mask of 1/m and 1/I (identicalIndexMask, contact_kernel.hpp)
+  std::size_t attribute;  // index mask of 1/m and 1/I (identicalIndexMask, block_sweep.hpp)
 };
 
 /// Particles ahead of the one being moved whose lines the team's integration requests for

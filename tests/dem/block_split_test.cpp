@@ -4,7 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "dem/contact_kernel.hpp"
+#include "dem/block_split.hpp"
+#include "dem/partner_buffers.hpp"
 
 namespace gf::dem {
 namespace {
