@@ -15,6 +15,7 @@
 
 #include "core/cpu_features.hpp"  // GF_VECTOR_CLONES
 #include "core/parallel.hpp"
+#include "core/reduction.hpp"
 
 namespace gf::coupling {
 
@@ -29,14 +30,14 @@ inline void forEachIndex(std::int64_t n, std::int64_t workPerIndex, Body&& body)
   }
 }
 
+/// The order of the coupling's reductions (core/reduction.hpp): one accumulator on the calling
+/// thread below kMinParallelWork indices, else a fixed block per thread.
+inline SumPolicy indexSums() { return {kMinParallelWork, false, false}; }
+
+/// This process's sum of body(i) over [0, n) (gf::localSum in the index order).
 template <class Body>
 inline double sumOverIndices(std::int64_t n, Body&& body) {
-  if (n < kMinParallelWork) {
-    double s = 0.0;
-    for (std::int64_t i = 0; i < n; ++i) s += body(i);
-    return s;
-  }
-  return parallelSum(n, body);
+  return gf::localSum(n, indexSums(), body);
 }
 
 /// The threads sumsOverRanges runs on for n indices.

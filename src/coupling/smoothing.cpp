@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/reduction.hpp"
 #include "coupling/loops.hpp"
 
 namespace gf::coupling {
@@ -44,10 +45,6 @@ void apply(const GridTopology& t, double l2, const std::vector<double>& x, std::
   });
 }
 
-double dotProduct(const std::vector<double>& a, const std::vector<double>& b) {
-  return sumOverIndices(static_cast<std::int64_t>(a.size()), [&](std::int64_t i) { return a[i] * b[i]; });
-}
-
 }  // namespace
 
 SmoothingReport smoothField(const GridTopology& t, double l, Field& field) {
@@ -65,18 +62,18 @@ SmoothingReport smoothField(const GridTopology& t, double l, Field& field) {
   apply(t, l * l, x, q);
   for (std::size_t i = 0; i < n; ++i) r[i] = b[i] - q[i];
   p = r;
-  const double bNorm = std::sqrt(dotProduct(b, b));
-  double rr = dotProduct(r, r);
+  const double bNorm = gf::norm(b, indexSums());
+  double rr = gf::dot(r, r, indexSums());
   const double tolerance = 1e-13 * (bNorm > 0.0 ? bNorm : 1.0);
   int it = 0;
   while (std::sqrt(rr) > tolerance && it < 10000) {
     apply(t, l * l, p, q);
-    const double alpha = rr / dotProduct(p, q);
+    const double alpha = rr / gf::dot(p, q, indexSums());
     for (std::size_t i = 0; i < n; ++i) {
       x[i] += alpha * p[i];
       r[i] -= alpha * q[i];
     }
-    const double rrNew = dotProduct(r, r);
+    const double rrNew = gf::dot(r, r, indexSums());
     const double beta = rrNew / rr;
     rr = rrNew;
     for (std::size_t i = 0; i < n; ++i) p[i] = r[i] + beta * p[i];

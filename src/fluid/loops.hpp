@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/parallel.hpp"
+#include "core/reduction.hpp"
 #include "fluid/boundary.hpp"
 #include "fluid/team_tuner.hpp"
 
@@ -112,14 +113,16 @@ inline void parallelForAbove(std::int64_t n, std::int64_t serialBelow, Body&& bo
   }
 }
 
+/// The order of the fluid's reductions (core/reduction.hpp): over grid lines (one accumulator on
+/// the calling thread below kSerialBelow lines), and over single values (four interleaved ones
+/// below kSerialElementsBelow values); serial for a small grid or one thread.
+inline SumPolicy lineSums() { return {kSerialBelow, serialLoops(), false}; }
+inline SumPolicy elementSums() { return {kSerialElementsBelow, serialLoops(), true}; }
+
+/// This process's sum over grid lines (gf::localSum in the line order).
 template <class Body>
 inline double parallelSum(std::int64_t n, Body&& body) {
-  if (n < kSerialBelow || serialLoops()) {
-    double s = 0.0;
-    for (std::int64_t i = 0; i < n; ++i) s += body(i);
-    return s;
-  }
-  return gf::parallelSum(n, body);
+  return gf::localSum(n, lineSums(), body);
 }
 
 /// Element-wise loops (vector updates, dot products): cheap bodies, so a larger threshold.
@@ -132,58 +135,18 @@ inline void parallelForElements(std::int64_t n, Body&& body) {
   }
 }
 
-/// Sum with four interleaved partial sums (fixed order, so deterministic): breaks the add
-/// latency chain of a single accumulator.
-template <class Body>
-inline double serialSum4(std::int64_t n, Body&& body) {
-  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-  std::int64_t i = 0;
-  for (; i + 4 <= n; i += 4) {
-    s0 += body(i);
-    s1 += body(i + 1);
-    s2 += body(i + 2);
-    s3 += body(i + 3);
-  }
-  for (; i < n; ++i) s0 += body(i);
-  return (s0 + s1) + (s2 + s3);
-}
+using gf::serialSum4;
 
 template <class Body>
 inline double parallelSumElements(std::int64_t n, Body&& body) {
-  if (n < kSerialElementsBelow || serialLoops()) return serialSum4(n, body);
-  return gf::parallelSum(n, body);
+  return gf::localSum(n, elementSums(), body);
 }
 
-/// Two sums in one pass: body(i, a, b) adds to a and b (and may write arrays). Fixed order per
-/// thread block, partials added in thread order: deterministic for a thread count.
+/// Two sums in one pass over single values: body(i, a, b) adds to a and b (and may write arrays).
+/// This process's sums (gf::localSum2 in the element order).
 template <class Body>
 inline std::pair<double, double> parallelSum2Elements(std::int64_t n, Body&& body) {
-  if (n < kSerialElementsBelow || serialLoops()) {
-    double a0 = 0.0, a1 = 0.0, b0 = 0.0, b1 = 0.0;
-    std::int64_t i = 0;
-    for (; i + 2 <= n; i += 2) {
-      body(i, a0, b0);
-      body(i + 1, a1, b1);
-    }
-    for (; i < n; ++i) body(i, a0, b0);
-    return {a0 + a1, b0 + b1};
-  }
-  double pa[256] = {}, pb[256] = {};
-#pragma omp parallel
-  {
-    const int t = omp_get_thread_num();
-    double la = 0.0, lb = 0.0;
-#pragma omp for schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) body(i, la, lb);
-    pa[t & 255] += la;
-    pb[t & 255] += lb;
-  }
-  double a = 0.0, b = 0.0;
-  for (int t = 0; t < 256; ++t) {
-    a += pa[t];
-    b += pb[t];
-  }
-  return {a, b};
+  return gf::localSum2(n, elementSums(), body);
 }
 
 }  // namespace gf::fluid

@@ -5,6 +5,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/reduction.hpp"
 #include "fluid/convection_varying.hpp"
 #include "fluid/loops.hpp"
 #include "fluid/momentum_rhs.hpp"
@@ -285,9 +286,7 @@ double jacobiSweepUniform(const Field& x, Field& y, const double* B, const Unifo
     for (; i < pts[0]; ++i) body(i, acc0);
     linePartial[static_cast<std::size_t>(line)] = acc0 + acc1;
   });
-  double sum = 0.0;
-  for (double v : linePartial) sum += v;
-  return sum;
+  return sumOfPartials(linePartial);
 }
 
 }  // namespace
@@ -445,9 +444,6 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
   double* Y = y.data().data();
   double* Z = z.data().data();
   const auto& mask = unknown_[c];
-  auto dot = [&](const double* a, const double* b) {
-    return parallelSumElements(n, [&](std::int64_t q) { return a[q] * b[q]; });
-  };
   const int dims = twoD_ ? 2 : 3;
   // Jacobi diagonal (inverted) for the Jacobi and BiCGStab paths; the Chebyshev sweeps compute it
   // on the fly (UniformJacobiDiagonal) and build the array only if they stall.
@@ -519,7 +515,7 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
     Uo[q] = un;  // u^{n-1} <- u^n for the next step
   });
   fillVelocityGhosts(x, c, bc_, GhostMode::Full);
-  const double bnorm = std::sqrt(parallelSumElements(n, [&](std::int64_t q) { return mask[q] ? B[q] * B[q] : 0.0; }));
+  const double bnorm = std::sqrt(globalSum(n, elementSums(), [&](std::int64_t q) { return mask[q] ? B[q] * B[q] : 0.0; }));
   const double tol = momentumTolerance_ * (bnorm > 0.0 ? bnorm : 1.0);
   int it = 0;
   // Strongly diagonally dominant systems (small mu dt / h^2): plain Jacobi sweeps are much
@@ -532,7 +528,7 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
   // Residual and BiCGStab vectors (the Chebyshev sweeps compute their own residual).
   auto initialiseKrylov = [&]() {
     applyHelmholtz(c, x, krylov_[5], dt, g0);
-    return std::sqrt(parallelSumElements(n, [&](std::int64_t q) {
+    return std::sqrt(globalSum(n, elementSums(), [&](std::int64_t q) {
       r[q] = mask[q] ? B[q] - t[q] : 0.0;
       rhat[q] = r[q];
       p[q] = 0.0;
@@ -575,7 +571,7 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
       parallelForElements(n, [&](std::int64_t q) { X[q] += r[q] * invDiag[q]; });
       fillVelocityGhosts(x, c, bc_, GhostMode::Full);
       applyHelmholtz(c, x, krylov_[5], dt, g0);
-      const double rr = parallelSum2Elements(n, [&](std::int64_t q, double& a, double&) {
+      const double rr = globalSum2(n, elementSums(), [&](std::int64_t q, double& a, double&) {
                           r[q] = mask[q] ? B[q] - t[q] : 0.0;
                           a += r[q] * r[q];
                         }).first;
@@ -600,8 +596,8 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
     });
     fillVelocityGhosts(y, c, bc_, GhostMode::Homogeneous);
     applyHelmholtz(c, y, krylov_[3], dt, g0);
-    alpha = rho / dot(rhat, v);
-    const double ss = parallelSum2Elements(n, [&](std::int64_t q, double& a, double&) {
+    alpha = rho / gf::dot(rhat, v, n, elementSums());
+    const double ss = globalSum2(n, elementSums(), [&](std::int64_t q, double& a, double&) {
                         s[q] = r[q] - alpha * v[q];
                         Z[q] = s[q] * invDiag[q];
                         a += s[q] * s[q];
@@ -612,12 +608,12 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
     }
     fillVelocityGhosts(z, c, bc_, GhostMode::Homogeneous);
     applyHelmholtz(c, z, krylov_[5], dt, g0);
-    const auto [tt, ts] = parallelSum2Elements(n, [&](std::int64_t q, double& a, double& b) {
+    const auto [tt, ts] = globalSum2(n, elementSums(), [&](std::int64_t q, double& a, double& b) {
       a += t[q] * t[q];
       b += t[q] * s[q];
     });
     omega = tt > 0.0 ? ts / tt : 0.0;
-    const auto [rr, rhr] = parallelSum2Elements(n, [&](std::int64_t q, double& a, double& b) {
+    const auto [rr, rhr] = globalSum2(n, elementSums(), [&](std::int64_t q, double& a, double& b) {
       X[q] += alpha * Y[q] + omega * Z[q];
       r[q] = s[q] - omega * t[q];
       a += r[q] * r[q];
@@ -673,12 +669,12 @@ double Solver::correctMomentum(double dt, double g0) {
       });
     });
     applyHelmholtz(c, u, krylov_[5], dt, g0);
-    bb += parallelSum(lines, [&](std::int64_t line) {
+    bb += globalSum(lines, lineSums(), [&](std::int64_t line) {
       double s = 0.0;
       forLine(line, [&](std::size_t f, std::size_t, std::size_t) { s += R[f] * R[f]; });
       return s;
     });
-    rr += parallelSum(lines, [&](std::int64_t line) {
+    rr += globalSum(lines, lineSums(), [&](std::int64_t line) {
       double s = 0.0;
       forLine(line, [&](std::size_t f, std::size_t, std::size_t) { s += (R[f] - Au[f]) * (R[f] - Au[f]); });
       return s;

@@ -13,6 +13,7 @@
 
 #include <omp.h>
 
+#include "core/reduction.hpp"
 #include "fluid/loops.hpp"
 #include "fluid/solver.hpp"
 #include "fluid/staggered_eps.hpp"
@@ -106,12 +107,6 @@ void jacobiSweepRows(const Field& x, Field& y, const double* B, const Row* rows,
     }
     partial[line] = acc;
   }
-}
-
-double sumLines(const std::vector<double>& partial) {
-  double s = 0.0;
-  for (double v : partial) s += v;
-  return s;
 }
 
 }  // namespace
@@ -251,7 +246,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
     bool inYLocal[3] = {false, false, false};
     bool conv[3] = {true, true, true};
     for (int c = 0; c < 3; ++c) {
-      const double bnorm = std::sqrt(sumLines(teamPartial_[c][0]));
+      const double bnorm = std::sqrt(sumOfPartials(teamPartial_[c][0]));
       tol[c] = momentumTolerance_ * (bnorm > 0.0 ? bnorm : 1.0);
       active[c] = !unknownList_[c].empty();
     }
@@ -271,7 +266,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
       for (int c = 0; c < 3; ++c) {
         if (!active[c]) continue;
         // Residual of x (before this sweep's update): converged -> keep x, as solveHelmholtz.
-        const double rnorm = std::sqrt(sumLines(teamPartial_[c][parity]));
+        const double rnorm = std::sqrt(sumOfPartials(teamPartial_[c][parity]));
         if (rnorm <= tol[c]) {
           active[c] = false;
         } else if (its[c] >= kMaxSweeps) {

@@ -6,6 +6,7 @@
 
 #include <omp.h>
 
+#include "core/reduction.hpp"
 #include "fluid/loops.hpp"
 
 namespace gf::fluid {
@@ -21,10 +22,6 @@ constexpr int kCoarsestSweeps = 40;
 constexpr std::int64_t kLevelSerialBelow = 512;
 // solveTeam: grids below kSerialCellsBelow cells, team members own at least this many fine cells.
 constexpr std::int64_t kTeamCellsPerThread = 1500;
-
-double dotProduct(const std::vector<double>& a, const std::vector<double>& b) {
-  return parallelSumElements(static_cast<std::int64_t>(a.size()), [&](std::int64_t i) { return a[i] * b[i]; });
-}
 }  // namespace
 
 void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool, 3>& periodic,
@@ -559,9 +556,7 @@ double MultigridPoisson::applyLevelDot(const PoissonLevel& L, const std::vector<
     const double* x = xv.data() + base;
     lineSums_[static_cast<std::size_t>(line)] = serialSum4(nx, [&](std::int64_t i) { return x[i] * y[i]; });
   });
-  double sum = 0.0;
-  for (double v : lineSums_) sum += v;
-  return sum;
+  return sumOfPartials(lineSums_);
 }
 
 namespace {
@@ -790,11 +785,10 @@ double MultigridPoisson::precondition() {
   const auto n = static_cast<std::int64_t>(z_.size());
   double* z = z_.data();
   const double* r = r_.data();
-  if (!singular_ || activeCells_ == 0.0)
-    return parallelSumElements(n, [&](std::int64_t i) { return r[i] * z[i]; });
+  if (!singular_ || activeCells_ == 0.0) return gf::dot(r, z, n, elementSums());
   const double* inv = L.invDiag.data();
-  const double mean = parallelSumElements(n, [&](std::int64_t i) { return inv[i] > 0.0 ? z[i] : 0.0; }) / activeCells_;
-  return parallelSumElements(n, [&](std::int64_t i) {
+  const double mean = globalSum(n, elementSums(), [&](std::int64_t i) { return inv[i] > 0.0 ? z[i] : 0.0; }) / activeCells_;
+  return globalSum(n, elementSums(), [&](std::int64_t i) {
     z[i] = inv[i] > 0.0 ? z[i] - mean : 0.0;
     return r[i] * z[i];
   });
@@ -805,7 +799,7 @@ void MultigridPoisson::removeMean(std::vector<double>& v) const {
   const auto n = static_cast<std::int64_t>(v.size());
   const double count = activeCells_;
   if (count == 0.0) return;
-  const double mean = parallelSumElements(n, [&](std::int64_t i) { return L.invDiag[i] > 0.0 ? v[i] : 0.0; }) / count;
+  const double mean = globalSum(n, elementSums(), [&](std::int64_t i) { return L.invDiag[i] > 0.0 ? v[i] : 0.0; }) / count;
   parallelForElements(n, [&](std::int64_t i) { v[i] = L.invDiag[i] > 0.0 ? v[i] - mean : 0.0; });
 }
 
@@ -853,7 +847,7 @@ PoissonResult MultigridPoisson::solveInternal(std::vector<double>& x, const std:
   const auto n = static_cast<std::int64_t>(b.size());
   std::copy(b.begin(), b.end(), r_.begin());
   if (singular_) removeMean(r_);  // compatible right-hand side
-  const double bnorm = std::sqrt(dotProduct(r_, r_));
+  const double bnorm = gf::norm(r_, elementSums());
   if (bnorm == 0.0) {
     std::fill(x.begin(), x.end(), 0.0);
     return result;
@@ -861,7 +855,7 @@ PoissonResult MultigridPoisson::solveInternal(std::vector<double>& x, const std:
   applyLevel(levels_[0], x, q_);
   parallelForElements(n, [&](std::int64_t i) { r_[i] -= q_[i]; });
   if (singular_) removeMean(r_);
-  double rnorm = std::sqrt(dotProduct(r_, r_));
+  double rnorm = gf::norm(r_, elementSums());
   result.relativeResidual = rnorm / bnorm;
   if (result.relativeResidual <= tol) return result;
   double rz = precondition();
@@ -874,7 +868,7 @@ PoissonResult MultigridPoisson::solveInternal(std::vector<double>& x, const std:
     double* rd = r_.data();
     const double* pd = p_.data();
     const double* qd = q_.data();
-    rnorm = std::sqrt(parallelSumElements(n, [&](std::int64_t i) {
+    rnorm = std::sqrt(globalSum(n, elementSums(), [&](std::int64_t i) {
       xd[i] += alpha * pd[i];
       rd[i] -= alpha * qd[i];
       return rd[i] * rd[i];
@@ -939,11 +933,7 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
     const std::int64_t le = static_cast<std::int64_t>(ny) * (nz * (t + 1) / members);
     const int K0 = cz * t / members, K1 = cz * (t + 1) / members;
     double* lineR = lineBuffer_.data() + stride * static_cast<std::size_t>(t);
-    auto sum = [&](int which) {
-      double s = 0.0;
-      for (double v : teamSums_[which]) s += v;
-      return s;
-    };
+    auto sum = [&](int which) { return sumOfPartials(teamSums_[which]); };
     auto lineDot = [&](const double* a, const double* c, std::int64_t line) {
       const std::size_t base = static_cast<std::size_t>(nx) * line;
       return serialSum4(nx, [&](std::int64_t i) { return a[base + i] * c[base + i]; });

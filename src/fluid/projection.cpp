@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/reduction.hpp"
 #include "fluid/loops.hpp"
 #include "fluid/solver.hpp"
 
@@ -59,9 +60,7 @@ double Solver::maxDivergence() const {
     }
     lineMax[static_cast<std::size_t>(line)] = m;
   });
-  double m = 0.0;
-  for (double v : lineMax) m = std::max(m, v);
-  return m;
+  return maxOfPartials(lineMax);
 }
 
 void Solver::balanceOutflow(double dt) {
