@@ -111,6 +111,9 @@ class Solver {
 
  private:
   void readParams(Params& fluid, const Domain& domain);
+  /// checkHealth's tests without the report: true where every value is finite and the CFL number
+  /// within cfl_limit (solver.cpp).
+  bool healthyFast() const;
   void markBlocked(Params& fluid);
   void buildUnknownMasks();
   void fillAllGhosts();
