@@ -813,6 +813,12 @@ double MultigridPoisson::precondition() {
   double* z = z_.data();
   const double* r = r_.data();
   if (!singular_ || activeCells_ == 0.0) return gf::dot(r, z, n, elementSums());
+  // Constant coefficients and every cell active (a closed box of single-phase flow): the
+  // projection is a full pass that changes nothing CG needs. A constant added to z changes neither
+  // r . z (r has zero mean) nor A p (constants are A's null space), the coarsest solve keeps that
+  // constant small (zero-mean solution, factorCoarsest), and solveInternal removes x's mean at the
+  // end. (Other singular problems keep it: blocked cells must stay 0.)
+  if (L.constantT && activeCells_ == static_cast<double>(L.cells())) return gf::dot(r, z, n, elementSums());
   const double* inv = L.invDiag.data();
   const double mean = globalSum(n, elementSums(), [&](std::int64_t i) { return inv[i] > 0.0 ? z[i] : 0.0; }) / activeCells_;
   return globalSum(n, elementSums(), [&](std::int64_t i) {
