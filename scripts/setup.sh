@@ -9,6 +9,7 @@ packages=(
   libyaml-cpp-dev libfmt-dev libspdlog-dev libcli11-dev libeigen3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy
+  libopenmpi-dev openmpi-bin libhypre-dev libtrilinos-zoltan-dev
   "$@"
 )
 

@@ -15,6 +15,7 @@ declare -A forbidden=(
   [dem]="fluid coupling app"
   [fluid]="dem coupling app"
   [coupling]="app"
+  [parallel]="dem fluid coupling app"
 )
 
 violations=0

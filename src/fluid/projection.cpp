@@ -253,7 +253,9 @@ void Solver::project(double dt, double g0) {
   });
   if (rebuild) {
     std::array<bool, 3> periodic{bc_.periodic(0), bc_.periodic(1), bc_.periodic(2) && !twoD_};
-    poisson_.setup(grid_.cells, periodic, T, dirichlet);
+    if (hyprePressure_ && !hypre_) hypre_ = std::make_shared<HyprePressure>();
+    if (hypre_) hypre_->setup(PressureBox::whole(grid_.cells), periodic, T, dirichlet);
+    else poisson_.setup(grid_.cells, periodic, T, dirichlet);
     poissonKey_ = uniformCoupling_ ? timeCoeff : -1.0;
   }
   // Pressure outlets: phi_b = p_out - p^n_b with p^n_b the interior pressure extrapolated
@@ -286,7 +288,8 @@ void Solver::project(double dt, double g0) {
     poissonRhs_[static_cast<std::size_t>(cell[0]) + static_cast<std::size_t>(nx) * (cell[1] + static_cast<std::size_t>(ny) * cell[2])] +=
         2.0 * T * phiB;
   });
-  const PoissonResult res = poisson_.solve(poissonX_, poissonRhs_, pressureTolerance_, pressureMaxIterations_);
+  const PoissonResult res = hypre_ ? hypre_->solve(poissonX_, poissonRhs_, pressureTolerance_, pressureMaxIterations_)
+                                   : poisson_.solve(poissonX_, poissonRhs_, pressureTolerance_, pressureMaxIterations_);
   stats_.pressureIterations = res.iterations;
   stats_.pressureResidual = res.relativeResidual;
   const double* Phi = phi_.data().data();

@@ -89,7 +89,13 @@ void Solver::readParams(Params& fluid, const Domain& domain) {
       1e-8);
   momentumMaxIterations_ = static_cast<int>(
       fluid.integer({"momentum_max_iterations", "-", "iteration cap of the momentum solves", Range::atLeast(1)}, 200));
-  Params pressure = fluid.section({"pressure", "-", "pressure Poisson solver (multigrid-preconditioned CG)"});
+  Params pressure = fluid.section({"pressure", "-", "pressure Poisson solver (preconditioned CG)"});
+  hyprePressure_ =
+      pressure.choice({"solver", "-",
+                       "multigrid: grainflow's multigrid-preconditioned CG (threaded, the fastest on one process); "
+                       "hypre: hypre's structured PCG preconditioned by PFMG (the solver of a run on several MPI "
+                       "ranks; initialises MPI)"},
+                      {"multigrid", "hypre"}, "multigrid") == "hypre";
   pressureTolerance_ = pressure.real({"tolerance", "-", "relative residual ||b - A x|| / ||b||", Range::positive()}, 1e-8);
   pressureMaxIterations_ =
       static_cast<int>(pressure.integer({"max_iterations", "-", "iteration cap", Range::atLeast(1)}, 200));

@@ -17,6 +17,7 @@
 //   cellVelocity(out), pressureGradient(out), pressure(), cellFields() for output
 #include <array>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@
 #include "core/serialize.hpp"
 #include "core/timers.hpp"
 #include "fluid/boundary.hpp"
+#include "fluid/hypre_pressure.hpp"
 #include "fluid/multigrid.hpp"
 #include "fluid/team_tuner.hpp"
 
@@ -209,6 +211,10 @@ class Solver {
   std::vector<double> krylov_[7];  // r, rhat, p, v, s, t, 1/diag
   Field precY_[3], precZ_[3];
   std::vector<double> linePartial_;  // per-line partial sums (deterministic reductions)
+  /// ||b||^2 of component c, computed by assembleMomentum's eps = 1 path along with b, for the
+  /// predictor's solveHelmholtz (kept: valid for that solve only).
+  double rhsNorm2_[3] = {0.0, 0.0, 0.0};
+  bool rhsNorm2Kept_[3] = {false, false, false};
   TeamTuner momentumTeam_;    // one thread or a team for predictMomentumTeam (speed only)
   TeamTuner projectTeam_[2];  // project(): coefficients + right-hand side, correction + p update
   mutable TeamTuner cellVelocityTeam_, pressureGradientTeam_;  // cellVelocity(), pressureGradient()
@@ -226,6 +232,10 @@ class Solver {
   std::vector<double> epsMemberRange_;      // momentum_team.cpp: min and max of eps per team member
   std::vector<double> teamPartial_[3][3];  // momentum_team.cpp: per component, ||b||^2 and two sweep parities
   MultigridPoisson poisson_;
+  /// fluid.pressure.solver: hypre: the pressure goes through HyprePressure instead of poisson_
+  /// (created at the first projection).
+  bool hyprePressure_ = false;
+  std::shared_ptr<HyprePressure> hypre_;
   double poissonKey_ = -1.0;  // rho gamma0 / dt of the current multigrid setup (-1: rebuild)
   bool uniformCoupling_ = true;
   bool epsOlderOnes_ = true;  // epsOlder_ is 1 everywhere (ghosts included)
