@@ -407,9 +407,14 @@ void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2,
   if (uniformCoupling_) {
     // eps = eps_old = eps_older = 1 and K = 0 (ghosts included): the general expression below with
     // those values (same arithmetic; the drag term K u_p is an exact zero), without reading them.
-    forLines(static_cast<std::int64_t>(pts[1]) * pts[2], lineBegin, lineEnd, [&](std::int64_t line) {
+    // |b|^2 per grid line as well (all lines: solveHelmholtz's ||b|| without another pass).
+    const std::int64_t lines = static_cast<std::int64_t>(pts[1]) * pts[2];
+    const bool norm = lineEnd < 0;
+    if (norm) linePartial_.resize(static_cast<std::size_t>(lines));
+    forLines(lines, lineBegin, lineEnd, [&](std::int64_t line) {
       const int j = static_cast<int>(line % pts[1]), k = static_cast<int>(line / pts[1]);
       const std::size_t f0 = uc.index(0, j, k), e0 = p_.index(0, j, k);
+      double bb = 0.0;
       auto point = [&](int i) {
         const std::size_t f = f0 + i;
         if (!mask[f]) return;
@@ -420,6 +425,7 @@ void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2,
         r += rho_ * gc + drive;
         r += 0.5 * (F[cc] + F[cm]) + 0.0;
         R[f] = r;
+        bb += r * r;
       };
       int i = 0;
       // Points 1 .. n - 2 of a line of unknowns there: two at a time, each lane with the
@@ -435,10 +441,16 @@ void Solver::assembleMomentum(int c, double dt, double g0, double g1, double g2,
           r += body;
           r += 0.5 * (load2(F + cc) + load2(F + cm)) + 0.0;
           store2(R + f, r);
+          const Double2 rr = r * r;
+          bb += rr[0];
+          bb += rr[1];
         }
       }
       for (; i < pts[0]; ++i) point(i);
+      if (norm) linePartial_[static_cast<std::size_t>(line)] = bb;
     });
+    rhsNorm2Kept_[c] = norm;
+    if (norm) rhsNorm2_[c] = sumOfPartials(linePartial_);
     return;
   }
   const MomentumRhsPoint rhs = momentumRhsPoint(c, dt, g1, g2, e1, e2);
@@ -560,7 +572,11 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
     Uo[q] = un;  // u^{n-1} <- u^n for the next step
   });
   fillVelocityGhosts(x, c, bc_, GhostMode::Full);
-  const double bnorm = std::sqrt(globalSum(n, elementSums(), [&](std::int64_t q) { return mask[q] ? B[q] * B[q] : 0.0; }));
+  // (||b||^2 from assembleMomentum where it has just computed b: eps = 1, predictor)
+  const double bnorm = std::sqrt(predictor && rhsNorm2Kept_[c]
+                                     ? rhsNorm2_[c]
+                                     : globalSum(n, elementSums(), [&](std::int64_t q) { return mask[q] ? B[q] * B[q] : 0.0; }));
+  rhsNorm2Kept_[c] = false;
   const double tol = momentumTolerance_ * (bnorm > 0.0 ? bnorm : 1.0);
   int it = 0;
   // Strongly diagonally dominant systems (small mu dt / h^2): plain Jacobi sweeps are much
