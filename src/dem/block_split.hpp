@@ -15,15 +15,16 @@ namespace gf::dem {
 /// [start[t], start[t + 1])). The cost of a row is estimated from the lists and the positions at
 /// their build (all restored by a restart): kRowCost per row (body forces, row sums) + 1 per
 /// listed partner (the distance test) + kTouchingCost per pair touching at the build (gather,
-/// contact law, scatter) + kWallCost per wall entry + kKickCost (the closing half kick, which every
-/// thread applies during its sweep to the rows whose forces are then final; PartnerBuffers).
+/// contact law, scatter) + kWallCost per wall entry + kKickCost (the closing half kick, which
+/// every thread applies to its block in the pass after the sweep: closingHalfKick).
 /// Deterministic for a list and a thread count. The costs were fitted to per-thread CPU samples
 /// of the contact phase on 2 threads, bubbling bed and settled bed (where the touching pairs are
 /// unevenly spread over the rows: the row-count split gave the second thread 1.8 x the first's
 /// samples in the bubbling bed, the first 1.15 x the second's in the settled bed); the inline kick
 /// was first taken as free, and per-thread CPU time then showed the kicking block at 1.3-1.4 x the
 /// others in the bubbling bed, 1.2 x in the settled bed; with 1.5 both were within 0.95-1.05.
-/// Every thread kicks its final rows inline, so the kick is charged to every block.
+/// (Those samples were taken with the kick inside the sweep; it is now a pass of its own over the
+/// same blocks, so it is still charged to every block.)
 struct BlockSplit {
   static constexpr double kRowCost = 1.0, kTouchingCost = 2.5, kWallCost = 1.0, kKickCost = 1.5;
   /// weight (optional, one per thread): block t gets the share weight[t] / sum of the cost

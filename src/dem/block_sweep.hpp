@@ -1,8 +1,7 @@
 #pragma once
 // One thread's pass over its block of rows of the half neighbour list (BlockSweep): gather of the
-// touching pairs into batches, the contact law, the scatter in list order, the wall contacts and
-// the closing half kick of the rows whose forces are final. The driver that runs one sweep per
-// thread and completes the receiving rows: contact_kernel.hpp.
+// touching pairs into batches, the contact law, the scatter in list order and the wall contacts.
+// The driver that runs one sweep per thread and completes the receiving rows: contact_kernel.hpp.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -14,6 +13,7 @@
 #include "dem/contact/contact_force.hpp"
 #include "dem/contact/contact_table.hpp"
 #include "dem/contact/wall_batch.hpp"
+#include "dem/half_kick.hpp"
 #include "dem/partner_buffers.hpp"
 #include "dem/particles.hpp"
 #include "dem/periodic_box.hpp"
@@ -22,29 +22,12 @@
 
 namespace gf::dem {
 
-/// 1/m and 1/I per particle (I = 2/5 m r^2), kept by the System, so that the integration and the
-/// kicks multiply instead of dividing.
-struct InverseInertia {
-  const double* mass;    // 1/m, 1/kg
-  const double* moment;  // 1/I, 1/(kg m^2)
-  /// Every particle has the radius, mass and type of particle 0 (a monodisperse bed of one
-  /// material): the sweep then reads these per-particle values at index 0 (identicalIndexMask).
-  bool identical = false;
-};
-
-/// Index mask for the per-particle constants (radius, mass, type, 1/m, 1/I) of the contact sweep:
-/// all ones, or zero when every particle has particle 0's values. The loads x[i & mask] then stay
-/// on one cache line instead of a line per partner and per row (the values are the same, so are
-/// the results: bit-identical either way). The bubbling bed (24,750 identical spheres): contacts
-/// -10 % on one thread (docs/dem.md, Performance).
-inline std::uint32_t identicalIndexMask(bool identical) { return identical ? 0u : ~0u; }
-
 /// One thread's pass over its block of rows [begin, end) of the half neighbour list (see
-/// contactForcesAndKick). Rows are processed in runs: the touching pairs of a run are gathered
-/// into a ContactBatch, evaluated there in one vectorised loop, then added row by row in list
-/// order. Force/torque of particle j are set to the body forces just before the first row that
-/// adds to them (rows hold ascending partners j > i), so initialisation, contacts and the kick of
-/// a particle happen while its data are in cache. The order of the additions is the same as with
+/// contactForces). Rows are processed in runs: the touching pairs of a run are gathered into a
+/// ContactBatch, evaluated there in one vectorised loop, then added row by row in list order.
+/// Force/torque of particle j are set to the body forces just before the first row that adds to
+/// them (rows hold ascending partners j > i), so initialisation and contacts of a particle happen
+/// while its data are in cache. The order of the additions is the same as with
 /// a separate initialisation pass and one contact at a time.
 template <NormalLaw N, RollingLaw R, CohesionLaw C>
 struct BlockSweep {
@@ -60,8 +43,6 @@ struct BlockSweep {
   const std::int32_t* type;
   const Vec3* externalForce;
   const Vec3* externalTorque;
-  const double* inverseMass;
-  const double* inverseMoment;
   const std::uint32_t* rowStart;
   const std::uint32_t* partner;
   Vec3* history;
@@ -74,11 +55,11 @@ struct BlockSweep {
   std::uint32_t types;
   PeriodicBox box;
   Vec3 gravity;
-  double dt, halfKick;
-  bool external, externalTorques, withWalls, kickHere;  // kickHere: kick the rows whose forces are final in the pass
-  std::uint32_t attribute = ~0u;  // index mask of radius, mass, type, 1/m, 1/I (identicalIndexMask)
+  double dt;
+  bool external, externalTorques, withWalls;
+  std::uint32_t attribute = ~0u;  // index mask of radius, mass and type (identicalIndexMask)
   // Rows that receive contributions from earlier blocks (PartnerBuffers::receives; null in the
-  // first block): their contributions go to `deferred`, their kick comes after the barrier.
+  // first block): their contributions go to `deferred`, added after the barrier.
   const std::uint8_t* receiving = nullptr;
   // This thread's block.
   std::size_t begin, end;
@@ -334,17 +315,13 @@ struct BlockSweep {
     }
   }
 
-  /// Completes row i: its own sum, its wall contacts and (first block) its kick.
+  /// Completes row i: its own sum and its wall contacts.
   template <bool Logs>
   [[gnu::always_inline]] void finishRow(std::size_t i, const Vec3& fi, const Vec3& tqi) {
     if (rowStart[i] < rowStart[i + 1]) addToRow<Logs>(i, fi, tqi);
     if (withWalls && wallRowStart[i] != wallRowStart[i + 1])
       wallContactsOfParticle<N, R, C>(*particles, *wallList, *table, *walls, dt, i,
                                       [&](const Vec3& f, const Vec3& t) { addToRow<Logs>(i, f, t); });
-    // Half list: all contributions to i come from rows <= i; unless a row of an earlier block
-    // lists i (`receiving`), none come from other threads, so the force is final here and the kick
-    // can use it while it is in cache.
-    if (kickHere) kickRange(i, i + 1);
   }
 
   /// Adds a contribution to row i's own force and torque, or logs it (a receiving row: PartnerBuffers).
@@ -356,32 +333,6 @@ struct BlockSweep {
     } else {
       force[i] += f;
       torque[i] += t;
-    }
-  }
-
-  /// The closing half kick of the particles [from, to) whose forces are final (all but the
-  /// deferred ones).
-  [[gnu::always_inline]] void kickRange(std::size_t from, std::size_t to) {
-    Vec3* __restrict const v = velocity;
-    Vec3* __restrict const w = angularVelocity;
-    const Vec3* __restrict const f = force;
-    const Vec3* __restrict const tq = torque;
-    const double* __restrict const im = inverseMass;
-    const double* __restrict const ii = inverseMoment;
-    const double h = halfKick;
-    const std::size_t at = attribute;
-    const std::uint8_t* const defer = receiving;
-    if (defer) {
-      for (std::size_t q = from; q < to; ++q)
-        if (!defer[q]) {
-          v[q] += (h * im[q & at]) * f[q];
-          w[q] += (h * ii[q & at]) * tq[q];
-        }
-      return;
-    }
-    for (std::size_t q = from; q < to; ++q) {
-      v[q] += (h * im[q & at]) * f[q];
-      w[q] += (h * ii[q & at]) * tq[q];
     }
   }
 
@@ -498,9 +449,9 @@ struct BlockSweep {
     }
   }
 
-  /// Completes a run of rows [rb, re) whose pairs were all scattered: each row's sum, walls, kick.
-  /// Batched walls: sums of all rows, then the wall contacts, then the kicks (each touches only
-  /// its own particle: the same order of additions per particle as row by row).
+  /// Completes a run of rows [rb, re) whose pairs were all scattered: each row's sum and walls.
+  /// Batched walls: sums of all rows, then the wall contacts (each touches only its own
+  /// particle: the same order of additions per particle as row by row).
   template <bool Logs>
   [[gnu::always_inline]] void finishRun(std::size_t rb, std::size_t re, bool wallsGathered) {
     const ContactBatch& b = *batch;
@@ -511,7 +462,6 @@ struct BlockSweep {
     for (std::size_t i = rb; i < re; ++i)
       if (rowStart[i] < rowStart[i + 1]) addToRow<Logs>(i, b.rowForce[i - rb], b.rowTorque[i - rb]);
     scatterWalls<Logs>(rb);
-    if (kickHere) kickRange(rb, re);
   }
 
   /// The rows [rb, re) (candidates [base, base + count), count <= capacity): owners, gather,
@@ -602,8 +552,8 @@ struct BlockSweep {
           continue;
         }
         // Free flight: the rows [i, k) have no partners and no wall entries. Their forces are
-        // final once initialised (half list: contributions to a row come from rows <= it, and
-        // the rows between are empty), so body forces and kicks run as two plain loops over the
+        // complete once initialised (half list: contributions to a row come from rows <= it, and
+        // the rows between are empty), so the body forces run as one plain loop over the
         // stretch instead of the row-by-row completion (same operations per particle).
         std::size_t k = i + 1;
         const std::uint32_t wallBase = withWalls ? wallRowStart[i] : 0;
@@ -613,7 +563,6 @@ struct BlockSweep {
           ++k;
         }
         initialiseUpTo(k);
-        if (kickHere) kickRange(i, k);
         i = k;
         continue;
       }

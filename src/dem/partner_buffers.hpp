@@ -32,12 +32,12 @@ struct LoggedContribution {
 /// logs its own contributions in sweep order (`deferred[t]`), and it logs its contributions to
 /// rows of later blocks (`outgoing[t]`). After the barrier, thread t starts each of its receiving
 /// rows from the body force its sweep set, adds the outgoing logs of the blocks before it (block
-/// by block, each in sweep order, that is in row order), then its own deferred log, and kicks
-/// them. So the DEM trajectory does not depend on the split: the split can follow the measured
-/// speed of each thread (`speed`) without breaking reproducibility.
+/// by block, each in sweep order, that is in row order), then its own deferred log. So the DEM
+/// trajectory does not depend on the split: the split can follow the measured speed of each
+/// thread (`speed`) without breaking reproducibility.
 ///
 /// A row that receives nothing from earlier blocks has its final force when its block's sweep
-/// completes it, and is kicked there.
+/// completes it.
 struct PartnerBuffers {
   std::vector<std::vector<LoggedContribution>> outgoing;  // per thread: to rows of later blocks
   std::vector<std::vector<LoggedContribution>> deferred;  // per thread: to its own receiving rows

@@ -242,9 +242,13 @@ void System::computeForces(double dt, double halfKick) {
                         hasTriangles, allPlanes};
   dispatchLaws(table_.normalLaw(), table_.rollingLaw(), table_.cohesionLaw(),
                [&]<NormalLaw N, RollingLaw R, CohesionLaw C>() {
-                 contactForcesAndKick<N, R, C>(particles_, list_, wallList_, walls, table_, box_, gravity_, dt,
-                                               halfKick, {inverseMass_.data(), inverseMoment_.data(), identicalSpheres()}, buffers_);
+                 contactForces<N, R, C>(particles_, list_, wallList_, walls, table_, box_, gravity_, dt,
+                                        identicalSpheres(), buffers_);
                });
+  if (halfKick == 0.0) return;
+  // The closing half kick, once every force is final (each thread its block of the force split).
+  closingHalfKick(particles_, halfKick, {inverseMass_.data(), inverseMoment_.data(), identicalSpheres()},
+                  buffers_.blockStart);
 }
 
 namespace {
@@ -384,7 +388,7 @@ void System::step(double dt) {
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
     rebuild(std::move(order), std::min(before, list_.rows()));
   }
-  computeForces(dt, 0.5 * dt);  // includes the closing half kick
+  computeForces(dt, 0.5 * dt);  // and the closing half kick
   ++steps_;
 }
 
