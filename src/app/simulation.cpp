@@ -238,7 +238,7 @@ void Simulation::writeCheckpoint(const std::string& path) const {
   out.putVector(nextMonitorTime_);
   dem_->save(out);
   if (fluid_) fluid_->save(out);
-  if (coupler_) coupler_->save(out);
+  if (coupler_) coupler_->save(out, dem_->particles());
   for (const MonitorSlot& m : monitors_) m.monitor->save(out);
   io::writeCheckpoint(path, fingerprint_, out);
 }
@@ -256,7 +256,7 @@ void Simulation::restoreCheckpoint(const std::string& path) {
   dem_->load(in);
   if (fluid_) fluid_->load(in);
   if (coupler_) {
-    coupler_->load(in);
+    coupler_->load(in, dem_->particles());
     // Rebuild the coupling stencils of the restored particles without touching the restored fields.
     CouplingFields& fields = fluid_->couplingFields();
     const Field eps = fields.voidFraction, epsOld = fields.voidFractionOld;

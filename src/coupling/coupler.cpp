@@ -84,8 +84,8 @@ CouplerSettings readSettings(Params& s) {
 
 constexpr std::size_t kNewParticle = static_cast<std::size_t>(-1);
 
-/// For each id of `current`, its index in `previous`, or kNewParticle (the DEM reorders, inserts
-/// and removes particles between coupling calls; ids are unique).
+/// For each id of `current`, its index in `previous`, or kNewParticle (a checkpoint's coupling state
+/// is matched to the restored particles by id; ids are unique).
 std::vector<std::size_t> previousIndexById(const std::vector<std::int64_t>& previous,
                                            const std::vector<std::int64_t>& current) {
   std::unordered_map<std::int64_t, std::size_t> oldIndex;
@@ -97,15 +97,6 @@ std::vector<std::size_t> previousIndexById(const std::vector<std::int64_t>& prev
     if (it != oldIndex.end()) from[p] = it->second;
   }
   return from;
-}
-
-/// values moved to the current order (`from`: previousIndexById); `missing` for new particles.
-template <class T>
-void moveToCurrentOrder(std::vector<T>& values, const std::vector<std::size_t>& from, const T& missing) {
-  std::vector<T> moved(from.size(), missing);
-  for (std::size_t p = 0; p < from.size(); ++p)
-    if (from[p] != kNewParticle) moved[p] = values[from[p]];
-  values = std::move(moved);
 }
 
 }  // namespace
@@ -158,7 +149,6 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   // in particle order, as sumsOverIndices would)
   const bool inPieces = scheme_->beginStencils(particles, topology_, stencils_);
   stencilsReady_ = true;
-  const std::size_t n = particles.size();
   const std::size_t cells = solidFraction_.data().size();
   const double* radius = particles.radius.data();
   auto particleVolume = [radius](std::size_t p) { return force::sphereVolume(2.0 * radius[p]); };
@@ -168,8 +158,8 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   // and the exchange channels (each channel summed exactly as by its own deposit), kept for
   // fillFluidSources.
   exchangeDeposited_ = false;
-  if (exchangePending_ && previousId_.size() == beta_.size()) realignToParticles(particles);
-  const bool fuse = exchangePending_ && beta_.size() == n;
+  const bool fuse = exchangePending_ && carriesExchange(particles);
+  if (fuse) followLayout(particles);
   // Nothing reads the stencils after a fused deposit unless the forces are interpolated with them:
   // then each piece is built into a buffer of its thread that holds one piece and stays in cache
   // (the bubbling bed's 24,750 stencils, 3.3 MB, were written out to memory every coupling step).
@@ -198,7 +188,7 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   if (fuse) {
     withExchangeLayout([&](auto layout) {
       constexpr ExchangeLayout L = decltype(layout)::value;
-      const ExchangeData data = exchangeData();
+      const ExchangeData data = exchangeData(particles);
       volume = depositChannels<1 + channelsOf(L)>(
                    stencils_, cells, deposit_,
                    [&particleVolume, data](std::size_t p, auto& v) {
@@ -364,34 +354,59 @@ void Coupler::scaleToFluxVelocity(const Field& eps) {
   }
 }
 
-bool Coupler::previousStampMatches(const dem::ParticleSet& particles) const {
-  return previousStamp_ != 0 && previousStamp_ == particles.layoutStamp && previousId_.size() == particles.size();
-}
-
-bool Coupler::previousIdsMatch(const dem::ParticleSet& particles) {
-  if (previousStampMatches(particles)) return true;
-  if (particles.id != previousId_) return false;
-  previousStamp_ = particles.layoutStamp;
-  return true;
-}
-
-void Coupler::keepIds(const dem::ParticleSet& particles) {
-  if (previousStampMatches(particles)) return;
-  previousId_ = particles.id;
-  previousStamp_ = particles.layoutStamp;
-}
-
-void Coupler::alignPreviousSlip(const dem::ParticleSet& particles) {
-  // slip of each current particle at the previous coupling step (matched by id); a particle
-  // without history gets NaN, read as "its current slip", i.e. no virtual-mass force in its first step
-  if (previousIdsMatch(particles)) return;
+Coupler::Columns Coupler::columnsOf(dem::ParticleSet& particles) const {
+  // (all added first: adding a column moves the column objects, not their values)
+  const std::size_t beta = particles.addColumn(kBetaColumn, 0.0);
+  const std::size_t slip = particles.addColumn(kSlipColumn, Vec3{});
+  const std::size_t other = particles.addColumn(kOtherForceColumn, Vec3{});
+  // NaN: no history, read as "its current slip", i.e. no virtual-mass force in a particle's first step
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  moveToCurrentOrder(previousSlip_, previousIndexById(previousId_, particles.id), Vec3{nan, nan, nan});
-  keepIds(particles);
+  const std::size_t previous = settings_.forces.virtualMass
+                                   ? particles.addColumn(kPreviousSlipColumn, Vec3{nan, nan, nan})
+                                   : dem::ParticleSet::kNoColumn;
+  return {particles.doubleColumns[beta].values.data(), particles.vec3Columns[slip].values.data(),
+          particles.vec3Columns[other].values.data(),
+          previous == dem::ParticleSet::kNoColumn ? nullptr : particles.vec3Columns[previous].values.data()};
+}
+
+bool Coupler::carriesExchange(const dem::ParticleSet& particles) {
+  return particles.findDoubleColumn(kBetaColumn) != dem::ParticleSet::kNoColumn &&
+         particles.findVec3Column(kSlipColumn) != dem::ParticleSet::kNoColumn &&
+         particles.findVec3Column(kOtherForceColumn) != dem::ParticleSet::kNoColumn;
+}
+
+Coupler::ExchangeData Coupler::exchangeData(const dem::ParticleSet& particles) {
+  if (!carriesExchange(particles))
+    throw std::logic_error("coupling: the particle set does not carry the exchange of computeParticleForces");
+  return {particles.doubleColumns[particles.findDoubleColumn(kBetaColumn)].values.data(),
+          particles.vec3Columns[particles.findVec3Column(kSlipColumn)].values.data(),
+          particles.vec3Columns[particles.findVec3Column(kOtherForceColumn)].values.data()};
+}
+
+const std::vector<double>& Coupler::dragCoefficients() const {
+  static const std::vector<double> none;
+  if (!exchangeSet_ || !carriesExchange(*exchangeSet_)) return none;
+  return exchangeSet_->doubleColumns[exchangeSet_->findDoubleColumn(kBetaColumn)].values;
+}
+
+const std::vector<Vec3>& Coupler::slipVelocities() const {
+  static const std::vector<Vec3> none;
+  if (!exchangeSet_ || !carriesExchange(*exchangeSet_)) return none;
+  return exchangeSet_->vec3Columns[exchangeSet_->findVec3Column(kSlipColumn)].values;
+}
+
+void Coupler::followLayout(const dem::ParticleSet& particles) {
+  exchangeSet_ = &particles;
+  if (particles.layoutStamp == forceStamp_) return;
+  // The DEM reordered (or inserted / removed) particles since computeParticleForces: their columns
+  // moved with them (new particles exchange nothing).
+  particleForceSumsValid_ = false;  // particles gone or new: sum the moved forces
+  if (settings_.forces.virtualMass) previousSlipFromSlip_ = true;
+  forceStamp_ = particles.layoutStamp;
 }
 
 template <InterpolationMode Mode, bool StandardChannels, class Law>
-void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet& particles) {
+void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet& particles, const Columns& columns) {
   // Per particle: interpolate every fluid field at once (interleaved cell buffer), slip, Re, drag
   // law (inlined), forces, and the per-particle exchange data for fillFluidSources.
   // StandardChannels: the channel layout of the default forces (u, eps, grad p, div tau; no
@@ -421,8 +436,13 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   const TrilinearSampler sampler(topology_);
   constexpr int kBlock = 32;
   const auto n = static_cast<std::int64_t>(particles.size());
-  auto forceBlock = [&, rho, mu, epsFloor, dPrimFactor, k3](const double* samples, std::size_t begin, int count,
-                                                            std::array<double, 4>& sums) {
+  // the particle's columns (ParticleSet::addColumn), as plain pointers copied into the block loop
+  double* const betaOut = columns.beta;
+  Vec3* const slipOut = columns.slip;
+  Vec3* const otherOut = columns.other;
+  const Vec3* const previousSlipIn = columns.previousSlip;
+  auto forceBlock = [&, rho, mu, epsFloor, dPrimFactor, k3, betaOut, slipOut, otherOut, previousSlipIn](
+                        const double* samples, std::size_t begin, int count, std::array<double, 4>& sums) {
     double sum[4] = {sums[0], sums[1], sums[2], sums[3]};  // in registers, not through the reference
     // 1 <= count <= kBlock (the one caller below passes min(kBlock, end - p) with p < end). Said
     // to the compiler: without it GCC 12 takes count <= 0 as possible, in which case the block
@@ -458,7 +478,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       const Vec3 slip = uf - particles.velocity[p];
       dPrimOf[q] = 2.0 * particles.radius[p] * dPrimFactor;
       slipSquared[q] = dot(slip, slip);
-      slip_[p] = slip;
+      slipOut[p] = slip;
     }
     squareRoots(slipSquared, slipNorm, count);
     for (int q = 0; q < count; ++q) re[q] = rho * slipNorm[q] * dPrimOf[q] / mu;
@@ -467,7 +487,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
     double exchangedSquared[kBlock];
     for (int q = 0; q < count; ++q) {
       const std::size_t p = begin + q;
-      const Vec3 slip = slip_[p];
+      const Vec3 slip = slipOut[p];
       const double d = 2.0 * particles.radius[p];
       const double dPrim = d * dPrimFactor;
       const double volume = force::sphereVolume(d);  // parcel volume = k^3 primary volumes
@@ -483,7 +503,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       Vec3 particleOnly = modelB ? Vec3{} : undisturbedFlow;
       if (w.buoyancy) particleOnly += volume * buoyancy;
       if (w.virtualMass) {
-        const Vec3 previous = std::isnan(previousSlip_[p].x) ? slip : previousSlip_[p];
+        const Vec3 previous = std::isnan(previousSlipIn[p].x) ? slip : previousSlipIn[p];
         exchangedOther += force::virtualMass(w.virtualMassCoefficient, rho, volume, slip, previous, fluid.timeStep);
       }
       Vec3 torque{};
@@ -494,8 +514,8 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
         if (w.magnusLift) exchangedOther += k3 * force::magnusLift(rho, dPrim, relOmega, slip);
         if (w.fluidTorque) torque = k3 * force::rotationalTorque(mu, dPrim, relOmega);
       }
-      beta_[p] = beta;
-      if (keepOther) otherExchangedForce_[p] = exchangedOther;
+      betaOut[p] = beta;
+      if (keepOther) otherOut[p] = exchangedOther;
       particles.externalForce[p] = fDrag + exchangedOther + particleOnly;
       if (torqueOut) particles.externalTorque[p] = torque;
       const Vec3 exchanged = fDrag + exchangedOther;
@@ -562,22 +582,25 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
   planesPerThread_ = settings_.interpolation == InterpolationMode::Trilinear && !settings_.fluxVelocity &&
                      !topology_.periodic[2] && rangeThreads > 1 && bufferBytes <= kThreadSamplesBytes;
   packSamples(fluid, fields, planesPerThread_);
-  for (auto* v : {&slip_, &otherExchangedForce_}) v->resize(n);
-  beta_.resize(n);
-  if (w.virtualMass) alignPreviousSlip(particles);
+  if (w.virtualMass && previousSlipFromSlip_) keepSlipAsPrevious(particles);
+  previousSlipFromSlip_ = false;
+  const Columns columns = columnsOf(particles);
   const bool standard = sampleChannels_ == kStandardChannels && gradPChannel_ == 4 && divTauChannel_ == 7;
   withDragCorrection(*drag_, [&](const auto& law) {  // law, interpolation, channels resolved once
     switch (settings_.interpolation) {
-      case InterpolationMode::Cell: forcePass<InterpolationMode::Cell, false>(fluid, law, particles); break;
+      case InterpolationMode::Cell: forcePass<InterpolationMode::Cell, false>(fluid, law, particles, columns); break;
       case InterpolationMode::Trilinear:
-        if (standard) forcePass<InterpolationMode::Trilinear, true>(fluid, law, particles);
-        else forcePass<InterpolationMode::Trilinear, false>(fluid, law, particles);
+        if (standard) forcePass<InterpolationMode::Trilinear, true>(fluid, law, particles, columns);
+        else forcePass<InterpolationMode::Trilinear, false>(fluid, law, particles, columns);
         break;
-      case InterpolationMode::Stencil: forcePass<InterpolationMode::Stencil, false>(fluid, law, particles); break;
+      case InterpolationMode::Stencil:
+        forcePass<InterpolationMode::Stencil, false>(fluid, law, particles, columns);
+        break;
     }
   });
-  keepIds(particles);
-  keepSlipAsPrevious();
+  exchangeSet_ = &particles;
+  forceStamp_ = particles.layoutStamp;
+  if (w.virtualMass) keepSlipAsPrevious(particles);
   forcesReady_ = true;
   exchangePending_ = true;
   exchangeDeposited_ = false;
@@ -589,75 +612,65 @@ void Coupler::beginSubstepAverage() {
   averagedSubsteps_ = 0;
 }
 
-void Coupler::alignSubstepSums(const dem::ParticleSet& particles) {
-  if (particles.id == averageId_) return;
-  // (a new particle was absent from the earlier substeps: sums 0)
-  const std::vector<std::size_t> from = previousIndexById(averageId_, particles.id);
-  moveToCurrentOrder(betaSum_, from, 0.0);
-  moveToCurrentOrder(dragSum_, from, Vec3{});
-  moveToCurrentOrder(otherSum_, from, Vec3{});
-  averageId_ = particles.id;
-}
-
-void Coupler::accumulateSubstep(const dem::ParticleSet& particles) {
+void Coupler::accumulateSubstep(dem::ParticleSet& particles) {
+  // (a particle inserted during the substeps starts from sums 0: absent from the earlier substeps)
+  const std::size_t b = particles.addColumn(kBetaSumColumn, 0.0);
+  const std::size_t d = particles.addColumn(kDragSumColumn, Vec3{});
+  const std::size_t o = particles.addColumn(kOtherSumColumn, Vec3{});
+  double* betaSum = particles.doubleColumns[b].values.data();
+  Vec3* dragSum = particles.vec3Columns[d].values.data();
+  Vec3* otherSum = particles.vec3Columns[o].values.data();
   const std::size_t n = particles.size();
   if (averagedSubsteps_ == 0) {
-    averageId_ = particles.id;
-    betaSum_.assign(n, 0.0);
-    dragSum_.assign(n, Vec3{});
-    otherSum_.assign(n, Vec3{});
-  } else {
-    alignSubstepSums(particles);
+    std::fill_n(betaSum, n, 0.0);
+    std::fill_n(dragSum, n, Vec3{});
+    std::fill_n(otherSum, n, Vec3{});
   }
+  const ExchangeData data = exchangeData(particles);
   forEachIndex(static_cast<std::int64_t>(n), 8, [&](std::int64_t p) {
-    betaSum_[p] += beta_[p];
-    dragSum_[p] += force::drag(beta_[p], slip_[p]);
-    otherSum_[p] += otherExchangedForce_[p];
+    betaSum[p] += data.beta[p];
+    dragSum[p] += force::drag(data.beta[p], data.slip[p]);
+    otherSum[p] += data.other[p];
   });
   ++averagedSubsteps_;
 }
 
-void Coupler::endSubstepAverage(const dem::ParticleSet& particles) {
+void Coupler::endSubstepAverage(dem::ParticleSet& particles) {
   averaging_ = false;
   const int substeps = averagedSubsteps_;
   averagedSubsteps_ = 0;
   if (substeps <= 1) return;  // (one substep: its exchange as computed, bit for bit)
-  alignSubstepSums(particles);
+  const Columns c = columnsOf(particles);
+  const std::size_t b = particles.findDoubleColumn(kBetaSumColumn);
+  const std::size_t d = particles.findVec3Column(kDragSumColumn);
+  const std::size_t o = particles.findVec3Column(kOtherSumColumn);
+  if (b == dem::ParticleSet::kNoColumn || d == dem::ParticleSet::kNoColumn || o == dem::ParticleSet::kNoColumn)
+    throw std::logic_error("coupling: endSubstepAverage on a particle set the substeps' forces were not computed on");
+  const double* betaSum = particles.doubleColumns[b].values.data();
+  const Vec3* dragSum = particles.vec3Columns[d].values.data();
+  const Vec3* otherSum = particles.vec3Columns[o].values.data();
   const std::size_t n = particles.size();
-  beta_.resize(n);
-  slip_.resize(n);
-  otherExchangedForce_.resize(n);
   const double inverse = 1.0 / static_cast<double>(substeps);
   forEachIndex(static_cast<std::int64_t>(n), 8, [&](std::int64_t p) {
     // mean beta and mean drag; the slip is what gives that drag with the mean beta (to round-off)
-    const double beta = inverse * betaSum_[p];
-    const Vec3 drag = inverse * dragSum_[p];
-    beta_[p] = beta;
-    slip_[p] = beta > 0.0 ? (1.0 / beta) * drag : Vec3{};
-    otherExchangedForce_[p] = inverse * otherSum_[p];
+    const double beta = inverse * betaSum[p];
+    const Vec3 drag = inverse * dragSum[p];
+    c.beta[p] = beta;
+    c.slip[p] = beta > 0.0 ? (1.0 / beta) * drag : Vec3{};
+    c.other[p] = inverse * otherSum[p];
   });
-  keepIds(particles);
+  exchangeSet_ = &particles;
+  forceStamp_ = particles.layoutStamp;
   particleForceSumsValid_ = false;  // the balance sums the means
-}
-
-void Coupler::realignToParticles(const dem::ParticleSet& particles) {
-  if (previousIdsMatch(particles)) return;
-  // The DEM reordered (or inserted / removed) particles since computeParticleForces: move the
-  // per-particle exchange data to the new order by id; new particles exchange nothing.
-  const std::vector<std::size_t> from = previousIndexById(previousId_, particles.id);
-  moveToCurrentOrder(otherExchangedForce_, from, Vec3{});
-  moveToCurrentOrder(slip_, from, Vec3{});
-  moveToCurrentOrder(beta_, from, 0.0);
-  particleForceSumsValid_ = false;  // particles gone or new: sum the realigned forces
-  keepSlipAsPrevious();
-  keepIds(particles);
 }
 
 void Coupler::fillFluidSources(const dem::ParticleSet& particles, CouplingFields& fields) {
   if (!forcesReady_) throw std::logic_error("coupling: computeParticleForces must run before fillFluidSources");
   if (stencils_.size() != particles.size())
     throw std::logic_error("coupling: computeVoidFraction must run on the current particle set before fillFluidSources");
-  realignToParticles(particles);
+  if (!carriesExchange(particles))
+    throw std::logic_error("coupling: fillFluidSources on a particle set computeParticleForces did not run on");
+  followLayout(particles);
   if (!exchangeDeposited_ && !stencilsKept_) {  // (the deposit below reads them)
     scheme_->buildStencils(particles, topology_, stencils_);
     stencilsKept_ = true;
@@ -666,7 +679,7 @@ void Coupler::fillFluidSources(const dem::ParticleSet& particles, CouplingFields
 }
 
 void Coupler::fillFluidSources(CouplingFields& fields) {
-  if (!forcesReady_ || beta_.size() != stencils_.size())
+  if (!forcesReady_ || !exchangeSet_ || exchangeSet_->size() != stencils_.size() || !carriesExchange(*exchangeSet_))
     throw std::logic_error("coupling: computeParticleForces must run before fillFluidSources (same particle set)");
   const bool implicit = settings_.exchange == ExchangeScheme::SemiImplicit;
   depositExchange(fields, implicit);
@@ -680,7 +693,7 @@ void Coupler::fillFluidSources(CouplingFields& fields) {
     const std::size_t target = ghostTarget_[q], source = ghostSource_[q];  // source: an interior cell
     for (double* d : exchange) d[target] = d[source];
   });
-  updateMomentumBalance(fields, implicit);
+  updateMomentumBalance(fields, implicit, exchangeSet_->size());
   exchangePending_ = exchangeDeposited_ = false;
 }
 
@@ -750,7 +763,7 @@ void Coupler::depositExchange(CouplingFields& fields, bool implicit) {
     withExchangeLayout([&](auto l) {
       constexpr ExchangeLayout L = decltype(l)::value;
       stride = channelsOf(L);
-      const ExchangeData data = exchangeData();
+      const ExchangeData data = exchangeData(*exchangeSet_);
       sum = depositChannels<channelsOf(L)>(stencils_, cells, deposit_, [data](std::size_t p, auto& v) {
               exchangeValues<L>(data, p, v);
             }).data();
@@ -807,18 +820,22 @@ void Coupler::smoothExchange(CouplingFields& fields, bool implicit) const {
     for (std::size_t q = 0; q < up.data().size(); ++q) up.data()[q] = k.data()[q] > 0.0 ? up.data()[q] / k.data()[q] : 0.0;
 }
 
-void Coupler::updateMomentumBalance(const CouplingFields& fields, bool implicit) {
+void Coupler::updateMomentumBalance(const CouplingFields& fields, bool implicit, std::size_t particleCount) {
   // Newton's third law: particles' exchanged forces + fluid sources (explicit - K (u - u_p)) = 0.
   // the particle side as summed by the force pass (same terms, same order), unless the particle
-  // set was realigned since
+  // set was reordered since
+  const ExchangeData data = particleForceSumsValid_ ? ExchangeData{} : exchangeData(*exchangeSet_);
   const std::array<double, 4> sums =
       particleForceSumsValid_
           ? particleForceSums_
-          : sumsOverIndices<4>(static_cast<std::int64_t>(beta_.size()), [&](std::int64_t p, std::array<double, 4>& sum) {
-              const Vec3 f = force::drag(beta_[p], slip_[p]) + otherExchangedForce_[p];
-              sum[0] += f.x, sum[1] += f.y, sum[2] += f.z;
-              sum[3] += norm(f);
-            }, &particleBlocks_);
+          : sumsOverIndices<4>(
+                static_cast<std::int64_t>(particleCount),
+                [&](std::int64_t p, std::array<double, 4>& sum) {
+                  const Vec3 f = force::drag(data.beta[p], data.slip[p]) + data.other[p];
+                  sum[0] += f.x, sum[1] += f.y, sum[2] += f.z;
+                  sum[3] += norm(f);
+                },
+                &particleBlocks_);
   const Vec3 onParticles{sums[0], sums[1], sums[2]};
   Vec3 onFluid{};
   exchangedForceScale_ = sums[3];
@@ -868,25 +885,48 @@ CouplingIntervalCheck Coupler::checkCouplingInterval(double demTimeStep, int dem
                                              fluid.viscosity, slip, settings_.minRelaxationToIntervalRatio);
 }
 
-void Coupler::keepSlipAsPrevious() {
+void Coupler::keepSlipAsPrevious(dem::ParticleSet& particles) const {
   // the slip of this step is the previous slip of the next one; only the virtual mass force reads
-  // it, otherwise it is only saved (from slip_ itself, no copy per step)
-  previousSlipIsSlip_ = !settings_.forces.virtualMass;
-  if (!previousSlipIsSlip_) previousSlip_ = slip_;
+  // it (its column exists only then), otherwise the checkpoint takes the slip itself
+  const std::size_t previous = particles.findVec3Column(kPreviousSlipColumn);
+  const std::size_t slip = particles.findVec3Column(kSlipColumn);
+  if (previous != dem::ParticleSet::kNoColumn && slip != dem::ParticleSet::kNoColumn)
+    particles.vec3Columns[previous].values = particles.vec3Columns[slip].values;
 }
 
-void Coupler::save(BinaryWriter& out) const {
-  out.putVector(previousId_);
-  out.putVector(previousSlipIsSlip_ ? slip_ : previousSlip_);
+void Coupler::save(BinaryWriter& out, const dem::ParticleSet& particles) const {
+  // the ids, and the previous slip in their order (the slip itself where it is the previous one:
+  // without virtual mass, or before the next force pass copies it); nothing before the first force pass
+  const std::size_t slip = particles.findVec3Column(kSlipColumn);
+  if (slip == dem::ParticleSet::kNoColumn) {
+    out.putVector(std::vector<std::int64_t>{});
+    out.putVector(std::vector<Vec3>{});
+    return;
+  }
+  const std::size_t previous = particles.findVec3Column(kPreviousSlipColumn);
+  const bool fromPrevious =
+      settings_.forces.virtualMass && !previousSlipFromSlip_ && previous != dem::ParticleSet::kNoColumn;
+  out.putVector(particles.id);
+  out.putVector(particles.vec3Columns[fromPrevious ? previous : slip].values);
 }
 
-void Coupler::load(BinaryReader& in) {
-  previousId_ = in.getVector<std::int64_t>();
-  previousStamp_ = 0;  // (compared in full once)
-  previousSlip_ = in.getVector<Vec3>();
-  previousSlipIsSlip_ = false;
-  if (previousId_.size() != previousSlip_.size())
+void Coupler::load(BinaryReader& in, dem::ParticleSet& particles) {
+  const std::vector<std::int64_t> ids = in.getVector<std::int64_t>();
+  const std::vector<Vec3> slips = in.getVector<Vec3>();
+  if (ids.size() != slips.size())
     throw CheckpointError("checkpoint is corrupt: coupling state arrays have different lengths");
+  previousSlipFromSlip_ = false;
+  forceStamp_ = 0;
+  if (ids.empty()) return;  // (written before the first force pass)
+  // into the slip column too: the same checkpoint again from a restart without a force pass
+  const Columns columns = columnsOf(particles);
+  const std::vector<std::size_t> from = previousIndexById(ids, particles.id);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    const bool known = from[p] != kNewParticle;
+    columns.slip[p] = known ? slips[from[p]] : Vec3{};
+    if (columns.previousSlip) columns.previousSlip[p] = known ? slips[from[p]] : Vec3{nan, nan, nan};
+  }
 }
 
 }  // namespace gf::coupling

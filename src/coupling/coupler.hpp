@@ -12,9 +12,11 @@
 //
 // (computeVoidFraction must also run once before the first computeParticleForces.) The forces of
 // computeParticleForces are distributed with the stencils of the latest computeVoidFraction; the
-// DEM may move and reorder particles in between (matched by id). The fields of the FluidView given
-// to computeParticleForces must stay alive, unchanged, until fillFluidSources returns (the
-// implicit part and the balance use the fluid velocity).
+// DEM may move, reorder, insert and remove particles in between: the per-particle exchange data
+// are columns of the ParticleSet (kBetaColumn, ...), which ParticleSet::gather moves with the
+// particles; new particles start from the columns' fill values (they exchange nothing). The
+// fields of the FluidView given to computeParticleForces must stay alive, unchanged, until
+// fillFluidSources returns (the implicit part and the balance use the fluid velocity).
 #include <array>
 #include <memory>
 #include <stdexcept>
@@ -101,20 +103,34 @@ class Coupler {
   Coupler(const Coupler&) = delete;
   Coupler& operator=(const Coupler&) = delete;
 
+  /// The columns the coupler adds to the particle set (ParticleSet::addColumn; computeParticleForces
+  /// adds them): drag coefficient beta_p (kg/s), slip u_f - u_p (m/s), the exchanged forces besides
+  /// the drag (N); with forces.virtual_mass the slip of the previous coupling step (NaN: no
+  /// history); with substep_fluid_fields: interpolated the sums over the substeps.
+  static constexpr const char* kBetaColumn = "coupling.beta";
+  static constexpr const char* kSlipColumn = "coupling.slip";
+  static constexpr const char* kOtherForceColumn = "coupling.other_exchanged_force";
+  static constexpr const char* kPreviousSlipColumn = "coupling.previous_slip";
+  static constexpr const char* kBetaSumColumn = "coupling.beta_sum";
+  static constexpr const char* kDragSumColumn = "coupling.drag_sum";
+  static constexpr const char* kOtherSumColumn = "coupling.other_sum";
+
   void computeVoidFraction(const dem::ParticleSet& particles, CouplingFields& fields);
   void computeParticleForces(const FluidView& fluid, const CouplingFields& fields, dem::ParticleSet& particles);
   void fillFluidSources(const dem::ParticleSet& particles, CouplingFields& fields);
-  /// Same, when the particle set is unchanged (same order) since computeParticleForces.
+  /// Same, with the set of the last computeParticleForces (or fillFluidSources, computeVoidFraction),
+  /// which must still be alive and unchanged (same order).
   void fillFluidSources(CouplingFields& fields);
   /// Forces before every DEM substep (SubstepFluidFields::Interpolated): between
   /// beginSubstepAverage() and endSubstepAverage(), every computeParticleForces adds its
-  /// per-particle exchange (beta, drag beta * slip, other exchanged forces) to running sums,
-  /// matched by particle id (the DEM may reorder, insert and remove particles between substeps;
-  /// a particle counts zero for the substeps it was absent). The end leaves the means over the
+  /// per-particle exchange (beta, drag beta * slip, other exchanged forces) to running sums, the
+  /// columns kBetaSumColumn ... of the particle set (the DEM may reorder, insert and remove
+  /// particles between substeps: the sums move with them; a particle counts zero for the substeps
+  /// it was absent). The end leaves the means over the
   /// substeps as the exchange of the coupling step: the fluid receives sum_s F_s dt_dem over the
   /// interval N dt_dem, the momentum the particles took. One substep: its exchange unchanged.
   void beginSubstepAverage();
-  void endSubstepAverage(const dem::ParticleSet& particles);
+  void endSubstepAverage(dem::ParticleSet& particles);
 
   /// Particles per thread for the particle loops that follow (dem::System::threadBlocks: each
   /// thread then works on the particles whose contacts it computed, in its core's cache). Empty,
@@ -150,12 +166,13 @@ class Coupler {
   double particleVolume() const { return particleVolume_; }     // sum V_p, m^3
   double depositedVolume() const { return depositedVolume_; }   // sum (1 - eps) V_c before clipping, m^3
   double clippedVolume() const { return clippedVolume_; }       // volume lost to min_void_fraction, m^3
-  const std::vector<double>& dragCoefficients() const { return beta_; }  // beta_p per particle, kg/s
-  /// Slip u_f - u_p per particle at the last computeParticleForces (particle order of that call;
+  /// beta_p per particle, kg/s, of the set of the last computeParticleForces (its column kBetaColumn).
+  const std::vector<double>& dragCoefficients() const;
+  /// Slip u_f - u_p per particle at the last computeParticleForces (column kSlipColumn of that set;
   /// after endSubstepAverage the substeps' mean), m/s: the interpolated fluid velocity at a particle
   /// is this plus the particle's velocity at that call. With dragCoefficients() for a semi-implicit
   /// DEM update (implicit_drag.hpp).
-  const std::vector<Vec3>& slipVelocities() const { return slip_; }
+  const std::vector<Vec3>& slipVelocities() const;
 
   /// Coupling-interval criterion for the smallest particle at slip velocity `slip` (seed 000 eq. 5.30).
   CouplingIntervalCheck checkCouplingInterval(double demTimeStep, int demStepsPerFluidStep,
@@ -171,9 +188,10 @@ class Coupler {
     return stencils_;
   }
 
-  /// State across coupling steps: the previous slip per particle (virtual mass).
-  void save(BinaryWriter& out) const;
-  void load(BinaryReader& in);
+  /// State across coupling steps: the previous slip per particle (virtual mass), written with the
+  /// particle ids and restored by id into the columns of `particles` (already loaded).
+  void save(BinaryWriter& out, const dem::ParticleSet& particles) const;
+  void load(BinaryReader& in, dem::ParticleSet& particles);
 
  private:
   void packSamples(const FluidView& fluid, const CouplingFields& fields, bool planesPerThread);
@@ -183,13 +201,24 @@ class Coupler {
   std::pair<int, int> planesSampledBy(const dem::ParticleSet& particles, std::int64_t begin, std::int64_t end) const;
   void scaleToFluxVelocity(const Field& eps);
   static constexpr int kStandardChannels = 10;  // u, eps, grad p, div tau
+  /// The columns of `particles` (added if absent): beta, slip, other exchanged force; previous slip
+  /// with virtual mass, nullptr otherwise (the substep sums: accumulateSubstep).
+  struct Columns {
+    double* beta;
+    Vec3* slip;
+    Vec3* other;
+    Vec3* previousSlip;
+  };
   template <InterpolationMode Mode, bool StandardChannels, class Law>
-  void forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet& particles);
-  void alignPreviousSlip(const dem::ParticleSet& particles);
-  void keepSlipAsPrevious();
-  void realignToParticles(const dem::ParticleSet& particles);
-  void accumulateSubstep(const dem::ParticleSet& particles);
-  void alignSubstepSums(const dem::ParticleSet& particles);
+  void forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet& particles, const Columns& columns);
+  Columns columnsOf(dem::ParticleSet& particles) const;
+  /// Whether `particles` carries the exchange columns (computeParticleForces ran on it or a copy).
+  static bool carriesExchange(const dem::ParticleSet& particles);
+  void keepSlipAsPrevious(dem::ParticleSet& particles) const;
+  /// The DEM inserted, removed or reordered particles since the force pass (their columns moved
+  /// with them): the force pass's sums no longer apply.
+  void followLayout(const dem::ParticleSet& particles);
+  void accumulateSubstep(dem::ParticleSet& particles);
   /// What is deposited per particle for the fluid (see exchangeValues): explicit, every exchanged
   /// force (3); implicit, the explicit part of the exchanged force (3), beta and beta (u_p - u_f@p)
   /// (4); implicit with no exchanged force besides the drag (model A without virtual mass and
@@ -206,7 +235,7 @@ class Coupler {
     const Vec3* slip;
     const Vec3* other;
   };
-  ExchangeData exchangeData() const { return {beta_.data(), slip_.data(), otherExchangedForce_.data()}; }
+  static ExchangeData exchangeData(const dem::ParticleSet& particles);
   /// The exchange quantities of particle p that are deposited (see depositExchange).
   template <ExchangeLayout Layout>
   static void exchangeValues(const ExchangeData& data, std::size_t p, double* v);
@@ -215,7 +244,7 @@ class Coupler {
   void withExchangeLayout(Body&& body) const;
   void depositExchange(CouplingFields& fields, bool implicit);
   void smoothExchange(CouplingFields& fields, bool implicit) const;
-  void updateMomentumBalance(const CouplingFields& fields, bool implicit);
+  void updateMomentumBalance(const CouplingFields& fields, bool implicit, std::size_t particleCount);
   void fillGhosts(Field& f) const;
 
   CouplerSettings settings_;
@@ -241,23 +270,14 @@ class Coupler {
   int sampleChannels_ = 4, gradPChannel_ = -1, divTauChannel_ = -1, vorticityChannel_ = -1;
   DepositBuffers deposit_;
   std::vector<std::size_t> ghostTarget_, ghostSource_;  // ghost cell <- interior cell (fillGhosts)
-  // per particle, from computeParticleForces
-  // (drag force = beta_ slip_, force::drag)
-  // otherExchangedForce_ is written only where the exchange reads it (not in the drag-only
-  // layout: there it stays all +0, the value the force pass would write)
-  std::vector<Vec3> slip_, otherExchangedForce_;
-  std::vector<double> beta_;
-  std::vector<std::int64_t> previousId_;
-  std::uint64_t previousStamp_ = 0;  // layoutStamp of the set previousId_ was taken from (0: none)
-  /// previousId_ was taken from this set as it is now (its layout stamp unchanged).
-  bool previousStampMatches(const dem::ParticleSet& particles) const;
-  /// Whether previousId_ holds the ids of `particles`, in order: the same layout stamp, else a
-  /// full comparison (which then records the stamp).
-  bool previousIdsMatch(const dem::ParticleSet& particles);
-  /// previousId_ = the ids of `particles` (no copy while the stamp is the same).
-  void keepIds(const dem::ParticleSet& particles);
-  std::vector<Vec3> previousSlip_;  // NaN where a particle has no history (virtual mass)
-  bool previousSlipIsSlip_ = false;  // previousSlip_ is slip_ (not copied without virtual mass)
+  // The per-particle exchange data (drag force = beta slip, force::drag) are columns of the
+  // particle set; the other exchanged force is written only where the exchange reads it (not in
+  // the drag-only layout: there it stays all +0, its fill value, the value the force pass would write).
+  const dem::ParticleSet* exchangeSet_ = nullptr;  // the set of the last force pass (or deposit since)
+  std::uint64_t forceStamp_ = 0;  // its layoutStamp at the force pass (0: none)
+  // virtual mass: the layout changed after the force pass, so the previous slip becomes the slip
+  // (new particles: 0, not NaN) before the next force pass (done there: the deposits see a const set)
+  bool previousSlipFromSlip_ = false;
   double particleVolume_ = 0.0, depositedVolume_ = 0.0, clippedVolume_ = 0.0;
   Vec3 balanceError_;
   bool stencilsReady_ = false, forcesReady_ = false;
@@ -267,12 +287,10 @@ class Coupler {
   // sum over particles of the exchanged force (x, y, z) and of its magnitude, from the force pass
   std::array<double, 4> particleForceSums_{};
   std::vector<std::size_t> particleBlocks_;  // setParticleBlocks
-  // substep average (beginSubstepAverage .. endSubstepAverage): sums per particle of averageId_
+  // substep average (beginSubstepAverage .. endSubstepAverage): sums per particle in the columns
+  // kBetaSumColumn, kDragSumColumn, kOtherSumColumn
   bool averaging_ = false;
   int averagedSubsteps_ = 0;
-  std::vector<std::int64_t> averageId_;
-  std::vector<double> betaSum_;
-  std::vector<Vec3> dragSum_, otherSum_;
   std::vector<double> volumeSums_;  // per thread, computeVoidFraction
   std::vector<std::array<double, 3>> runSums_;  // per interior row of cells (deposit_.runs)
   bool particleForceSumsValid_ = false;

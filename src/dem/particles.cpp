@@ -29,8 +29,40 @@ std::size_t ParticleSet::add(std::int64_t newId, std::int32_t materialType, doub
     externalForce.push_back({});
     externalTorque.push_back({});
   }
+  for (auto& c : doubleColumns) c.values.push_back(c.fill);
+  for (auto& c : vec3Columns) c.values.push_back(c.fill);
   return id.size() - 1;
 }
+
+namespace {
+template <class T>
+std::size_t findColumn(const std::vector<ParticleSet::Column<T>>& columns, const std::string& name) {
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    if (columns[c].name == name) return c;
+  return ParticleSet::kNoColumn;
+}
+
+template <class T>
+std::size_t addColumnTo(std::vector<ParticleSet::Column<T>>& columns, const std::string& name, const T& fill,
+                        std::size_t n) {
+  const std::size_t found = findColumn(columns, name);
+  if (found != ParticleSet::kNoColumn) return found;
+  columns.push_back({name, fill, std::vector<T>(n, fill)});
+  return columns.size() - 1;
+}
+}  // namespace
+
+std::size_t ParticleSet::addColumn(const std::string& name, double fill) {
+  return addColumnTo(doubleColumns, name, fill, size());
+}
+
+std::size_t ParticleSet::addColumn(const std::string& name, const Vec3& fill) {
+  return addColumnTo(vec3Columns, name, fill, size());
+}
+
+std::size_t ParticleSet::findDoubleColumn(const std::string& name) const { return findColumn(doubleColumns, name); }
+
+std::size_t ParticleSet::findVec3Column(const std::string& name) const { return findColumn(vec3Columns, name); }
 
 void ParticleSet::enableExternalForces() {
   if (hasExternalForces) return;
@@ -59,6 +91,8 @@ void ParticleSet::reserve(std::size_t n) {
     externalForce.reserve(n);
     externalTorque.reserve(n);
   }
+  for (auto& c : doubleColumns) c.values.reserve(n);
+  for (auto& c : vec3Columns) c.values.reserve(n);
 }
 
 namespace {
@@ -85,6 +119,8 @@ void ParticleSet::gather(const std::vector<std::uint32_t>& order) {
     gatherArray(externalForce, order);
     gatherArray(externalTorque, order);
   }
+  for (auto& c : doubleColumns) gatherArray(c.values, order);
+  for (auto& c : vec3Columns) gatherArray(c.values, order);
 }
 
 void ParticleSet::save(BinaryWriter& out) const {
@@ -131,6 +167,9 @@ void ParticleSet::load(BinaryReader& in) {
     externalForce = {};
     externalTorque = {};
   }
+  // (registered columns stay, every particle at its fill value: their owners restore their own)
+  for (auto& c : doubleColumns) c.values.assign(n, c.fill);
+  for (auto& c : vec3Columns) c.values.assign(n, c.fill);
 }
 
 }  // namespace gf::dem

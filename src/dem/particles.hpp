@@ -2,6 +2,7 @@
 // Particle storage: structure of arrays (one contiguous array per quantity), so that kernels
 // stream through memory, vectorise, and port to a GPU unchanged.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/serialize.hpp"
@@ -42,6 +43,29 @@ struct ParticleSet {
   void touchLayout() { layoutStamp = nextLayoutStamp(); }
   static std::uint64_t nextLayoutStamp();
 
+  /// Extra per-particle values that another subsystem keeps in the set's order (the coupling's
+  /// drag coefficient, slip velocity, substep sums): named columns that travel with their
+  /// particle. add() appends each column's fill value, gather() moves them like the arrays above
+  /// (reordering, removal), load() sets them to their fill value. Registered with addColumn (one
+  /// line per column); loops take the column's values.data(). Not part of save()/load(): whoever
+  /// needs one across a restart writes it (the coupler does, with the ids).
+  template <class T>
+  struct Column {
+    std::string name;
+    T fill{};
+    std::vector<T> values;  // one per particle
+  };
+  std::vector<Column<double>> doubleColumns;
+  std::vector<Column<Vec3>> vec3Columns;
+  /// The index in doubleColumns (vec3Columns) of the column `name`, created with every particle
+  /// at `fill` if there is none (an existing one keeps its values and fill).
+  std::size_t addColumn(const std::string& name, double fill);
+  std::size_t addColumn(const std::string& name, const Vec3& fill);
+  static constexpr std::size_t kNoColumn = static_cast<std::size_t>(-1);
+  /// The index of the column `name`, or kNoColumn.
+  std::size_t findDoubleColumn(const std::string& name) const;
+  std::size_t findVec3Column(const std::string& name) const;
+
   std::size_t size() const { return id.size(); }
 
   /// Sizes externalForce and externalTorque (new entries zero) and sets hasExternalForces; whoever
@@ -56,7 +80,7 @@ struct ParticleSet {
   /// Moment of inertia of a solid sphere, I = 2/5 m r^2.
   double inertia(std::size_t i) const { return 0.4 * mass[i] * radius[i] * radius[i]; }
 
-  /// Reorders all arrays: new index k holds the particle that had index order[k].
+  /// Reorders all arrays, the columns included: new index k holds the particle that had index order[k].
   /// Particles whose old index is not in `order` are dropped (removal).
   void gather(const std::vector<std::uint32_t>& order);
   void reserve(std::size_t n);

@@ -2,10 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-
+#include <cmath>
 #include <numbers>
 
 #include "core/monitor.hpp"
+#include "coupling/forces.hpp"
 #include "coupling/settling.hpp"
 #include "coupling_test_helpers.hpp"
 
@@ -116,4 +117,57 @@ TEST(Coupler, SingleSphereSettlesAtTheLawsTerminalVelocityThroughTheCouplerPath)
     EXPECT_EQ(f.forceDensity[2](1, 1, 1), 0.0);  // implicit exchange: drag in K, nothing explicit
     EXPECT_NEAR(f.dragCoefficient(1, 1, 1) * g.cellVolume(), c->dragCoefficients()[0], 1e-20);
   }
+}
+
+TEST(Coupler, ExchangeColumnsFollowTheirParticlesThroughReorderingAndRemoval) {
+  // The per-particle exchange (beta, slip, other exchanged forces, previous slip) lives in columns
+  // of the ParticleSet: a reordering with removals between the force pass and the fluid sources
+  // (the DEM's Morton reordering and outlets, ParticleSet::gather) moves each value with its
+  // particle, and the fluid receives minus the force of the particles that are left.
+  const CartesianGrid g = makeGrid({6, 6, 6}, {0.01, 0.01, 0.01});
+  auto c = makeCoupler("  exchange: explicit\n  forces:\n    virtual_mass: true\n    saffman_mei_lift: true\n", g,
+                       {false, false, false}, {0, 0, -9.81}, ExchangeModel::B);
+  dem::ParticleSet s = randomParticles(300, 0.001, 0.002, {0, 0, 0}, {0.06, 0.06, 0.06});
+  FluidFields fluid(g);
+  fluid.setVelocity(g, [](const Vec3& x) { return Vec3{x.y, 0.1, -x.x}; });
+  fluid.setPressureGradient(g, [](const Vec3& x) { return Vec3{100.0 * x.z, 0.0, 50.0}; });
+  CouplingFields f(g);
+  c->computeVoidFraction(s, f);
+  c->computeParticleForces(fluid.view(1000.0, 1e-3, 1e-3), f, s);
+  ASSERT_EQ(c->dragCoefficients().size(), s.size());
+  const std::size_t columns[4] = {s.findDoubleColumn(Coupler::kBetaColumn), s.findVec3Column(Coupler::kSlipColumn),
+                                  s.findVec3Column(Coupler::kOtherForceColumn),
+                                  s.findVec3Column(Coupler::kPreviousSlipColumn)};
+  for (std::size_t column : columns) ASSERT_NE(column, dem::ParticleSet::kNoColumn);
+  const dem::ParticleSet before = s;
+  // reverse the order and drop every third particle
+  std::vector<std::uint32_t> order;
+  for (std::size_t q = s.size(); q-- > 0;)
+    if (q % 3 != 0) order.push_back(static_cast<std::uint32_t>(q));
+  s.gather(order);
+  ASSERT_EQ(s.size(), 200u);
+  Vec3 kept{};
+  for (std::size_t p = 0; p < s.size(); ++p) {
+    const std::size_t q = order[p];
+    ASSERT_EQ(s.id[p], before.id[q]);
+    EXPECT_EQ(s.doubleColumns[columns[0]].values[p], before.doubleColumns[columns[0]].values[q]);
+    for (int k = 1; k < 4; ++k)
+      EXPECT_EQ(s.vec3Columns[columns[k]].values[p], before.vec3Columns[columns[k]].values[q]);
+    EXPECT_GT(s.doubleColumns[columns[0]].values[p], 0.0);
+    kept += force::drag(s.doubleColumns[columns[0]].values[p], s.vec3Columns[columns[1]].values[p]) +
+            s.vec3Columns[columns[2]].values[p];
+  }
+  // an inserted particle starts with the columns' fill values: it exchanges nothing
+  s.add(1000, 0, 0.0015, 2500.0, {0.03, 0.03, 0.03});
+  EXPECT_EQ(s.doubleColumns[columns[0]].values.back(), 0.0);
+  EXPECT_TRUE(std::isnan(s.vec3Columns[columns[3]].values.back().x));  // no virtual-mass history
+  c->computeVoidFraction(s, f);
+  c->fillFluidSources(s, f);
+  EXPECT_LT(norm(c->momentumBalanceError()), 1e-13 * c->exchangedForceScale());
+  Vec3 onFluid{};
+  for (int k = 0; k < 6; ++k)
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 6; ++i)
+        for (int a = 0; a < 3; ++a) onFluid[a] += f.forceDensity[a](i, j, k) * g.cellVolume();
+  EXPECT_LT(norm(onFluid + kept), 1e-12 * c->exchangedForceScale());
 }

@@ -204,9 +204,10 @@ TEST(Exchange, DistributionIsTheAdjointOfStencilInterpolation) {
   EXPECT_NEAR(particlePower, -fluidPower, 1e-12 * std::abs(particlePower));
 }
 
-TEST(Exchange, SourcesAfterDemSubstepsFollowParticlesByIdAndKeepTheBalance) {
+TEST(Exchange, SourcesAfterDemSubstepsFollowParticlesAndKeepTheBalance) {
   // Time-loop order: forces -> DEM substeps (particles move and are reordered) -> void fraction ->
-  // fluid sources. The forces computed before the substeps are deposited at the new positions.
+  // fluid sources. The forces computed before the substeps (the coupler's columns of the particle
+  // set, moved by ParticleSet::gather) are deposited at the new positions.
   const dem::ParticleSet base = randomParticles(400, 0.001, 0.002, {0, 0, 0}, {0.08, 0.077, 0.081});
   FluidFields fluid(kGrid);
   fluid.setVelocity(kGrid, swirl);
@@ -220,11 +221,13 @@ TEST(Exchange, SourcesAfterDemSubstepsFollowParticlesByIdAndKeepTheBalance) {
     Vec3 total{};
     for (std::size_t p = 0; p < particles.size(); ++p) total += particles.externalForce[p];
     // "DEM": reverse the order and move every particle by 3 mm in x (wrapping periodically)
-    dem::ParticleSet moved;
-    for (std::size_t q = particles.size(); q-- > 0;) {
-      Vec3 x = particles.position[q] + Vec3{0.003, 0.0, 0.0};
+    dem::ParticleSet moved = particles;
+    std::vector<std::uint32_t> order(particles.size());
+    for (std::size_t q = 0; q < order.size(); ++q) order[q] = static_cast<std::uint32_t>(particles.size() - 1 - q);
+    moved.gather(order);
+    for (Vec3& x : moved.position) {
+      x += Vec3{0.003, 0.0, 0.0};
       if (x.x >= 0.08) x.x -= 0.08;
-      moved.add(particles.id[q], 0, particles.radius[q], 2500.0, x, particles.velocity[q]);
     }
     c->computeVoidFraction(moved, fields);
     c->fillFluidSources(moved, fields);
@@ -374,7 +377,7 @@ TEST(Exchange, AnUnevenParticleSplitIsReplacedByEqualBlocks) {
   omp_set_num_threads(saved);
 }
 
-TEST(Exchange, SubstepAverageGivesTheFluidTheMeanExchangeOfTheSubstepsMatchedById) {
+TEST(Exchange, SubstepAverageGivesTheFluidTheMeanExchangeOfTheSubstepsPerParticle) {
   // substep_fluid_fields: interpolated. Forces before each of two substeps (different fluid
   // states; the "DEM" reverses the particle order in between): the fluid receives, cell by cell,
   // the mean of what each substep's forces alone would give, and the balance holds.
@@ -419,7 +422,10 @@ TEST(Exchange, SubstepAverageGivesTheFluidTheMeanExchangeOfTheSubstepsMatchedByI
     c->computeVoidFraction(particles, fields);
     c->beginSubstepAverage();
     c->computeParticleForces(first.view(1.2, 1.8e-5), fields, particles);
-    particles = reversed;
+    std::vector<std::uint32_t> order(particles.size());  // the "DEM": base -> reversed
+    for (std::size_t q = 0; q < order.size(); ++q) order[q] = static_cast<std::uint32_t>(particles.size() - 1 - q);
+    particles.gather(order);
+    ASSERT_EQ(particles.position, reversed.position);
     c->computeParticleForces(second.view(1.2, 1.8e-5), fields, particles);
     c->endSubstepAverage(particles);
     c->computeVoidFraction(particles, fields);

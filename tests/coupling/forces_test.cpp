@@ -122,18 +122,19 @@ TEST(Forces, VirtualMassUsesSlipChangeOverTheCouplingIntervalAndSurvivesRestart)
   c->computeParticleForces(fluid.view(1000.0, 1e-3, 1e-3), f, one);
   EXPECT_EQ(norm(one.externalForce[0]), 0.0);  // first step: no history
   BinaryWriter w;
-  c->save(w);
+  c->save(w, one);
   // fluid accelerates by 0.2 m/s in dt = 1e-3: F = 0.5 * 1000 * V * 0.2 / 1e-3 = 1e5 V
   fluid.setVelocity(g, [](const Vec3&) { return Vec3{0.2, 0, 0}; });
   c->computeParticleForces(fluid.view(1000.0, 1e-3, 1e-3), f, one);
   const double expected = 0.5 * 1000.0 * force::sphereVolume(2e-3) * 0.2 / 1e-3;
   EXPECT_NEAR(one.externalForce[0].x, expected, 1e-12 * expected);
-  // a restarted coupler with the saved state gives the same force
+  // a restarted coupler with the saved state (restored into the particles' columns by id) gives
+  // the same force
   auto restarted = makeCoupler(yaml, g);
-  BinaryReader r(w.bytes().data(), w.bytes().size());
-  restarted->load(r);
-  EXPECT_TRUE(r.atEnd());
   dem::ParticleSet again = one;
+  BinaryReader r(w.bytes().data(), w.bytes().size());
+  restarted->load(r, again);
+  EXPECT_TRUE(r.atEnd());
   CouplingFields f2(g);
   restarted->computeVoidFraction(again, f2);
   restarted->computeParticleForces(fluid.view(1000.0, 1e-3, 1e-3), f2, again);
@@ -155,9 +156,11 @@ TEST(Forces, VirtualMassHistoryFollowsParticlesWhenTheDemReordersThem) {
   second->computeVoidFraction(b, fb);
   first->computeParticleForces(fluid.view(1000.0, 1e-3, 1e-3), fa, a);
   second->computeParticleForces(fluid.view(1000.0, 1e-3, 1e-3), fb, b);
-  dem::ParticleSet reversed;  // the "DEM" of the second run reverses the order
-  for (std::size_t q = b.size(); q-- > 0;)
-    reversed.add(b.id[q], 0, b.radius[q], 2500.0, b.position[q], b.velocity[q], b.angularVelocity[q]);
+  // the "DEM" of the second run reverses the order (ParticleSet::gather moves the history along)
+  dem::ParticleSet reversed = b;
+  std::vector<std::uint32_t> order(b.size());
+  for (std::size_t q = 0; q < order.size(); ++q) order[q] = static_cast<std::uint32_t>(b.size() - 1 - q);
+  reversed.gather(order);
   fluid.setVelocity(g, [](const Vec3& x) { return Vec3{2.0 * x.y, -x.x, 0.3}; });
   first->computeVoidFraction(a, fa);
   second->computeVoidFraction(reversed, fb);
