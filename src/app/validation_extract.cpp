@@ -16,6 +16,16 @@ double crossingX(double x0, double y0, double x1, double y1, double level) {
 }
 }  // namespace
 
+Series sortedByX(std::vector<std::pair<double, double>> points) {
+  std::stable_sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  Series out;
+  for (const auto& [x, y] : points) {
+    out.x.push_back(x);
+    out.y.push_back(y);
+  }
+  return out;
+}
+
 Series window(const Series& s, double from, double to) {
   Series out;
   for (std::size_t i = 0; i < s.x.size(); ++i)
@@ -171,13 +181,7 @@ Series lastProfile(const std::vector<double>& time, const std::vector<double>& p
   std::vector<std::pair<double, double>> points;
   for (std::size_t i = 0; i < time.size(); ++i)
     if (time[i] == last) points.emplace_back(position[i], value[i]);
-  std::stable_sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  Series out;
-  for (const auto& [x, y] : points) {
-    out.x.push_back(x);
-    out.y.push_back(y);
-  }
-  return out;
+  return sortedByX(std::move(points));
 }
 
 }  // namespace gf::app::validation

@@ -4,6 +4,7 @@
 // every operation is unit-tested on synthetic series (tests/validation/extract_test.cpp).
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace gf::app::validation {
@@ -13,6 +14,9 @@ struct Series {
   std::vector<double> x;
   std::vector<double> y;
 };
+
+/// (x, y) points in any order as a Series sorted by x (stable: equal x keep their order).
+Series sortedByX(std::vector<std::pair<double, double>> points);
 
 /// The samples with x in [from, to] (inclusive).
 Series window(const Series& s, double from, double to);

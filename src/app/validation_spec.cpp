@@ -216,13 +216,7 @@ Series readReferencePoints(const Map& ref) {
       ref.fail("points", "'" + dumpYaml(pair) + "'", "[x, y] pairs of numbers");
     points.emplace_back(x, y);
   }
-  std::stable_sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  Series out;
-  for (const auto& [x, y] : points) {
-    out.x.push_back(x);
-    out.y.push_back(y);
-  }
-  return out;
+  return sortedByX(std::move(points));
 }
 
 PlotSpec readPlot(const Map& q);
