@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "dem/walls/wall_primitive.hpp"
+#include "../io/stl_test_writer.hpp"
 #include "dem_test_util.hpp"
 
 namespace gf::dem {
@@ -18,25 +19,6 @@ using test::DemCase;
 using test::materialsYaml;
 
 const std::filesystem::path kTmp = std::filesystem::temp_directory_path() / "grainflow_dem_walls_test";
-
-// Square [-L, L]^2 at z = 0 as two triangles, binary STL.
-void writeStl(const std::filesystem::path& path, double L) {
-  const float v[2][3][3] = {{{-float(L), -float(L), 0}, {float(L), -float(L), 0}, {float(L), float(L), 0}},
-                            {{-float(L), -float(L), 0}, {float(L), float(L), 0}, {-float(L), float(L), 0}}};
-  std::filesystem::create_directories(path.parent_path());
-  std::ofstream out(path, std::ios::binary);
-  char header[80] = {};
-  out.write(header, 80);
-  const std::uint32_t n = 2;
-  out.write(reinterpret_cast<const char*>(&n), 4);
-  for (const auto& t : v) {
-    const float normal[3] = {0, 0, 1};
-    out.write(reinterpret_cast<const char*>(normal), 12);
-    out.write(reinterpret_cast<const char*>(t), 36);
-    const std::uint16_t attr = 0;
-    out.write(reinterpret_cast<const char*>(&attr), 2);
-  }
-}
 
 TEST(DemWalls, DistanceToPrimitivesIsExact) {
   WallPrimitive tri;
@@ -77,7 +59,7 @@ double bounceOn(const std::string& walls, const Vec3& start, const Vec3& v, Vec3
 }
 
 TEST(DemWalls, StlPlaneCylinderAndConeReflectWithRestitution) {
-  writeStl(kTmp / "square.stl", 0.02);
+  gf::testing::writeStl(kTmp / "square.stl", gf::testing::squareTriangles(0.02), true);
   const double mesh = bounceOn("  - {type: stl, file: square.stl}\n", {0.001, 0.002, 0.0012}, {0, 0, -0.5});
   EXPECT_NEAR(mesh, 0.8, 0.01 * 0.8);
   // Inside a cylinder of radius 0.01 (drum), moving radially outwards.

@@ -10,12 +10,14 @@
 #include <vector>
 
 #include "fluid/solid_mesh.hpp"
+#include "../io/stl_test_writer.hpp"
 #include "fluid_test_util.hpp"
 
 namespace gf::fluid {
 namespace {
 
-using Tri = std::array<Vec3, 3>;
+using Tri = gf::testing::StlTriangle;
+using gf::testing::writeStl;
 
 /// The 12 triangles of the box [lo, hi], outward-oriented.
 std::vector<Tri> boxTriangles(const Vec3& lo, const Vec3& hi) {
@@ -27,34 +29,6 @@ std::vector<Tri> boxTriangles(const Vec3& lo, const Vec3& hi) {
     t.push_back({corner(q[0]), corner(q[2]), corner(q[3])});
   }
   return t;
-}
-
-void writeStl(const std::filesystem::path& path, const std::vector<Tri>& tris, bool binary) {
-  std::ofstream out(path, std::ios::binary);
-  if (binary) {
-    char header[80] = {};
-    out.write(header, 80);
-    const auto n = static_cast<std::uint32_t>(tris.size());
-    out.write(reinterpret_cast<const char*>(&n), 4);
-    for (const auto& t : tris) {
-      const float normal[3] = {0, 0, 0};
-      out.write(reinterpret_cast<const char*>(normal), 12);
-      for (const Vec3& v : t) {
-        const float f[3] = {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
-        out.write(reinterpret_cast<const char*>(f), 12);
-      }
-      const std::uint16_t attr = 0;
-      out.write(reinterpret_cast<const char*>(&attr), 2);
-    }
-  } else {
-    out << "solid box\n";
-    for (const auto& t : tris) {
-      out << " facet normal 0 0 0\n  outer loop\n";
-      for (const Vec3& v : t) out << "   vertex " << v.x << " " << v.y << " " << v.z << "\n";
-      out << "  endloop\n endfacet\n";
-    }
-    out << "endsolid box\n";
-  }
 }
 
 TEST(SolidMesh, WindingNumberIsOneInsideZeroOutsideAnyOrientation) {

@@ -7,41 +7,13 @@
 
 #include "core/error.hpp"
 #include "io/stl_reader.hpp"
+#include "stl_test_writer.hpp"
 
 using namespace gf;
 
 namespace {
 
 const std::filesystem::path kTmp = std::filesystem::temp_directory_path() / "grainflow_io_stl_reader_test";
-
-// Square [-L, L]^2 at z = 0 as two triangles.
-void writeStl(const std::filesystem::path& path, bool binary, double L) {
-  const float v[2][3][3] = {{{-float(L), -float(L), 0}, {float(L), -float(L), 0}, {float(L), float(L), 0}},
-                            {{-float(L), -float(L), 0}, {float(L), float(L), 0}, {-float(L), float(L), 0}}};
-  std::filesystem::create_directories(path.parent_path());
-  std::ofstream out(path, std::ios::binary);
-  if (binary) {
-    char header[80] = {};
-    out.write(header, 80);
-    const std::uint32_t n = 2;
-    out.write(reinterpret_cast<const char*>(&n), 4);
-    for (const auto& t : v) {
-      const float normal[3] = {0, 0, 1};
-      out.write(reinterpret_cast<const char*>(normal), 12);
-      out.write(reinterpret_cast<const char*>(t), 36);
-      const std::uint16_t attr = 0;
-      out.write(reinterpret_cast<const char*>(&attr), 2);
-    }
-  } else {
-    out << "solid square\n";
-    for (const auto& t : v) {
-      out << " facet normal 0 0 1\n  outer loop\n";
-      for (const auto& p : t) out << "   vertex " << p[0] << " " << p[1] << " " << p[2] << "\n";
-      out << "  endloop\n endfacet\n";
-    }
-    out << "endsolid square\n";
-  }
-}
 
 std::string errorOf(const std::filesystem::path& path) {
   try {
@@ -55,8 +27,8 @@ std::string errorOf(const std::filesystem::path& path) {
 }  // namespace
 
 TEST(StlReader, AsciiAndBinaryReadTheSameTriangles) {
-  writeStl(kTmp / "a.stl", false, 0.01);
-  writeStl(kTmp / "b.stl", true, 0.01);
+  gf::testing::writeStl(kTmp / "a.stl", gf::testing::squareTriangles(0.01), false);
+  gf::testing::writeStl(kTmp / "b.stl", gf::testing::squareTriangles(0.01), true);
   const auto a = io::readStl((kTmp / "a.stl").string()), b = io::readStl((kTmp / "b.stl").string());
   ASSERT_EQ(a.size(), 2u);
   ASSERT_EQ(b.size(), 2u);
