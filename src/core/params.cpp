@@ -217,6 +217,11 @@ bool Params::has(std::string_view key) const {
   return n != nullptr && !n->IsNull();
 }
 
+bool Params::isWord(std::string_view key, std::string_view word) const {
+  const YAML::Node* n = find(key);
+  return n != nullptr && n->IsScalar() && n->Scalar() == word;
+}
+
 FileLocation Params::location(std::string_view key) const {
   if (const YAML::Node* n = find(key)) {
     FileLocation loc = locationOf(shared_->file, *n);

@@ -9,8 +9,11 @@
 #include <type_traits>
 #include <unordered_map>
 
+#include <spdlog/spdlog.h>
+
 #include "coupling/deposit.hpp"
 #include "coupling/drag/dispatch.hpp"
+#include "coupling/drag/filtered.hpp"
 #include "coupling/loops.hpp"
 #include "coupling/forces.hpp"
 #include "coupling/smoothing.hpp"
@@ -37,9 +40,19 @@ CouplerSettings readSettings(Params& s) {
                         {"explicit", "implicit"}, "implicit") == "explicit"
                    ? ExchangeScheme::Explicit
                    : ExchangeScheme::SemiImplicit;
-  c.smoothingLength = s.real({"smoothing_length", "m", "smoothing length l of the implicit diffusion of eps "
-                                                       "(D = l^2/dt); 0 = off", Range::nonNegative()},
-                             0.0);
+  const Key smoothingKey{"smoothing_length", "m",
+                         "smoothing length l of the implicit diffusion of eps (D = l^2/dt); 0 = off; auto = the "
+                         "seed 003 law: l/d32 of Tab. 4.15 at the coarse-graining factor (8.06 up to 25, 10.3 at 33, "
+                         "17.0 at 50, linear in between and beyond), scaled by (1e-3 / <phi_p>)^(1/3) (eq. 4.10), "
+                         "<phi_p> and the Sauter mean primary diameter d32 of the particles at the first coupling "
+                         "step; the length chosen is printed",
+                         Range::nonNegative()};
+  if (!s.documenting() && s.isWord("smoothing_length", "auto")) {
+    s.choice(smoothingKey, {"auto"});
+    c.smoothingAuto = true;
+  } else {
+    c.smoothingLength = s.real(smoothingKey, 0.0);
+  }
   c.smoothExchangeFields = s.boolean({"smooth_exchange_fields", "-", "also smooth force density and K with l"}, false);
   c.minVoidFraction = s.real({"min_void_fraction", "-", "lower bound on eps (volume above it is reported as clipped)",
                               Range::between(0.0, 0.99)},
@@ -114,6 +127,34 @@ Coupler::Coupler(Params& root, const CartesianGrid& grid, const std::array<bool,
     settings_.dragLaw = s.text({"drag_law", "-"}, "di_felice");
     settings_.voidFraction = s.text({"void_fraction", "-"}, "divided");
   }
+  settings_.dragCorrection =
+      s.choice({"drag_correction", "-",
+                "correction on top of the drag law: none, or filtered = the filtered drag of Radl & Sundaresan "
+                "(2014) for grids too coarse to resolve clusters, with the parcel correction c_corr(alpha) at the "
+                "coarse-graining factor (seed 003 eqs. 3.29-3.36; filter size = cube root of the cell volume; "
+                "drag_law beetstra or beetstra_polydisperse only, the law it was fitted to)"},
+               {"none", "filtered"}, "none") == "filtered"
+          ? DragCorrection::Filtered
+          : DragCorrection::None;
+  {
+    Params f = s.section({"filtered_drag", "", "parameters of drag_correction: filtered"});
+    FilteredDragSettings& fd = settings_.filteredDrag;
+    fd.primaryDiameter = f.real({"primary_diameter", "m",
+                                 "primary particle diameter d_prim of Fr_prim and L_char (seed 003 eqs. 3.30-3.31); "
+                                 "0 = the Sauter mean primary diameter of the particles at the first coupling step",
+                                 Range::nonNegative()},
+                                0.0);
+    fd.parcelA = f.real({"parcel_a", "-", "a of the parcel correction c_corr = a + (1 - a) exp(-k (alpha - 1)) "
+                                          "(seed 003 eq. 3.36)", Range::between(0.0, 1.0)},
+                        0.0);
+    fd.parcelK = f.real({"parcel_k", "-", "k of the parcel correction c_corr (seed 003 eq. 3.36)", Range::nonNegative()},
+                        0.05);
+  }
+  if (!s.documenting() && settings_.dragCorrection == DragCorrection::Filtered &&
+      settings_.dragLaw != "beetstra" && settings_.dragLaw != "beetstra_polydisperse")
+    s.fail("drag_correction", "filtered with drag_law: " + settings_.dragLaw,
+           "drag_law: beetstra or beetstra_polydisperse with drag_correction: filtered (the filtered correction of "
+           "Radl & Sundaresan 2014 was fitted to Beetstra drag, seed 003 sec. 3.1.4), or drag_correction: none");
   solidFraction_ = Field(grid);
   for (int a = 0; a < 3; ++a) {
     vorticity_[a] = Field(grid);
@@ -214,6 +255,8 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   double* eps = fields.voidFraction.data().data();
   const double cellVolume = topology_.grid.cellVolume();
   const double minEps = settings_.minVoidFraction;
+  if (settings_.smoothingAuto && !(settings_.smoothingLength > 0.0) && particles.size() > 0)
+    chooseSmoothingLength(particles);
   const bool smoothing = settings_.smoothingLength > 0.0;
   auto toVoidFraction = [&](std::size_t q) {  // returns the volume clipped by min_void_fraction
     const double e = 1.0 - solid[q];
@@ -483,7 +526,10 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
     squareRoots(slipSquared, slipNorm, count);
     for (int q = 0; q < count; ++q) re[q] = rho * slipNorm[q] * dPrimOf[q] / mu;
     double correction[kBlock];  // f(Re, eps) of the law
-    if (w.drag) correctionsOf(law, re, eps, correction, count);
+    if (w.drag) {
+      if constexpr (std::is_same_v<Law, ParticleCorrection>) law.block(begin, re, eps, correction, count);
+      else correctionsOf(law, re, eps, correction, count);
+    }
     double exchangedSquared[kBlock];
     for (int q = 0; q < count; ++q) {
       const std::size_t p = begin + q;
@@ -586,7 +632,7 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
   previousSlipFromSlip_ = false;
   const Columns columns = columnsOf(particles);
   const bool standard = sampleChannels_ == kStandardChannels && gradPChannel_ == 4 && divTauChannel_ == 7;
-  withDragCorrection(*drag_, [&](const auto& law) {  // law, interpolation, channels resolved once
+  auto pass = [&](const auto& law) {  // law, interpolation, channels resolved once
     switch (settings_.interpolation) {
       case InterpolationMode::Cell: forcePass<InterpolationMode::Cell, false>(fluid, law, particles, columns); break;
       case InterpolationMode::Trilinear:
@@ -597,7 +643,12 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
         forcePass<InterpolationMode::Stencil, false>(fluid, law, particles, columns);
         break;
     }
-  });
+  };
+  // a polydisperse law or the filtered correction: per-particle data besides (Re, eps)
+  if (w.drag && (drag_->polydisperse() || settings_.dragCorrection == DragCorrection::Filtered))
+    pass(particleCorrection(fluid, particles));
+  else
+    withDragCorrection(*drag_, pass);
   exchangeSet_ = &particles;
   forceStamp_ = particles.layoutStamp;
   if (w.virtualMass) keepSlipAsPrevious(particles);
@@ -605,6 +656,102 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
   exchangePending_ = true;
   exchangeDeposited_ = false;
   if (averaging_) accumulateSubstep(particles);
+}
+
+void Coupler::updateSizeStatistics(const dem::ParticleSet& particles) {
+  const double alpha = settings_.coarseGraining.factor;
+  bool known = sizeClasses_.count() > 0;
+  for (std::size_t p = 0; known && p < particles.size(); ++p) {
+    const double d = 2.0 * particles.radius[p] / alpha;
+    known = sizeClasses_.binned() || sizeClasses_.diameters()[static_cast<std::size_t>(sizeClasses_.classOf(d))] == d;
+  }
+  if (!known) {
+    std::vector<double> diameters(particles.size());
+    for (std::size_t p = 0; p < particles.size(); ++p) diameters[p] = 2.0 * particles.radius[p] / alpha;
+    sizeClasses_ = SizeClasses(std::move(diameters));
+  }
+  computeCellSizeStatistics(topology_, particles, alpha, sizeClasses_, sizeStats_, cellOfParticle_, classOfParticle_);
+}
+
+const CellSizeStatistics& Coupler::sizeStatistics(dem::ParticleSet& particles) {
+  updateSizeStatistics(particles);
+  const std::size_t column = particles.addColumn(kSizeClassColumn, 0.0);
+  double* classOut = particles.doubleColumns[column].values.data();
+  for (std::size_t p = 0; p < particles.size(); ++p) classOut[p] = classOfParticle_[p];
+  return sizeStats_;
+}
+
+ParticleCorrection Coupler::particleCorrection(const FluidView& fluid, const dem::ParticleSet& particles) {
+  ParticleCorrection c;
+  c.law = drag_.get();
+  const double alpha = settings_.coarseGraining.factor;
+  if (drag_->polydisperse()) {
+    updateSizeStatistics(particles);
+    if (sizeClasses_.count() == 1 && !singleSizeWarned_) {
+      spdlog::warn("coupling: drag_law {} with particles of one size ({:g} m): it reduces to its monodisperse form",
+                   settings_.dragLaw, sizeClasses_.diameters().front());
+      singleSizeWarned_ = true;
+    }
+    // y_i = d_i / <d> and reMix = rho |u_f - <v>| <d> / mu of the particle's cell (the cell holding
+    // its centre; size_classes.hpp)
+    const std::size_t n = particles.size();
+    sizeRatio_.resize(n);
+    mixtureReynolds_.resize(n);
+    const double* u[3] = {fluid.velocity[0]->data().data(), fluid.velocity[1]->data().data(),
+                          fluid.velocity[2]->data().data()};
+    for (std::size_t p = 0; p < n; ++p) {
+      const std::size_t q = cellOfParticle_[p];
+      const double sauter = sizeStats_.sauterDiameter(q);
+      const Vec3 mixtureSlip = Vec3{u[0][q], u[1][q], u[2][q]} - sizeStats_.meanParticleVelocity(q);
+      sizeRatio_[p] = 2.0 * particles.radius[p] / alpha / sauter;
+      mixtureReynolds_[p] = fluid.density * norm(mixtureSlip) * sauter / fluid.viscosity;
+    }
+    c.sizeRatio = sizeRatio_.data();
+    c.mixtureReynolds = mixtureReynolds_.data();
+  }
+  if (settings_.dragCorrection == DragCorrection::Filtered) {
+    const FilteredDragSettings& fd = settings_.filteredDrag;
+    c.filterSize = std::cbrt(topology_.grid.cellVolume());
+    c.parcelCorrection = drag::parcelDragCorrection(alpha, fd.parcelA, fd.parcelK);
+    if (!(filterLength_ > 0.0) && particles.size() > 0) {
+      // d_prim (given, or the Sauter mean primary diameter) and the particles' mean density
+      double volume = 0.0, volumeOverDiameter = 0.0, mass = 0.0;
+      for (std::size_t p = 0; p < particles.size(); ++p) {
+        const double d = 2.0 * particles.radius[p];
+        volume += force::sphereVolume(d);
+        volumeOverDiameter += force::sphereVolume(d) / (d / alpha);
+        mass += particles.mass[p];
+      }
+      const double dPrim = fd.primaryDiameter > 0.0 ? fd.primaryDiameter : volume / volumeOverDiameter;
+      const double g = norm(gravity_);
+      if (!(g > 0.0)) throw std::invalid_argument("coupling: drag_correction: filtered needs gravity (L_char = u_t^2/g Fr^-2/3)");
+      const double ut = drag::beetstraTerminalVelocity(dPrim, mass / volume, fluid.density, fluid.viscosity, g);
+      filterLength_ = drag::filteredDragLength(ut, dPrim, g);
+      spdlog::info("coupling: filtered drag (Radl & Sundaresan 2014): d_prim {:.6g} m, u_t {:.6g} m/s, L_char {:.6g} "
+                   "m, filter size {:.6g} m, parcel correction {:.6g} at alpha {:g}",
+                   dPrim, ut, filterLength_, c.filterSize, c.parcelCorrection, alpha);
+    }
+    c.filtered = filterLength_ > 0.0;
+    c.characteristicLength = filterLength_;
+  }
+  return c;
+}
+
+void Coupler::chooseSmoothingLength(const dem::ParticleSet& particles) {
+  const double alpha = settings_.coarseGraining.factor;
+  double volume = 0.0, volumeOverDiameter = 0.0;
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    const double d = 2.0 * particles.radius[p];
+    volume += force::sphereVolume(d);
+    volumeOverDiameter += force::sphereVolume(d) / (d / alpha);
+  }
+  const CartesianGrid& g = topology_.grid;
+  const double meanFraction = volume / (g.cellVolume() * static_cast<double>(g.interiorCellCount()));
+  const double sauter = volume / volumeOverDiameter;
+  settings_.smoothingLength = autoSmoothingLength(alpha, sauter, meanFraction);
+  spdlog::info("coupling: smoothing_length auto = {:.6g} m ({:.4g} d32, d32 = {:.6g} m, alpha = {:g}, <phi_p> = {:.4g}; "
+               "seed 003 Tab. 4.15, eq. 4.10)",
+               settings_.smoothingLength, settings_.smoothingLength / sauter, sauter, alpha, meanFraction);
 }
 
 void Coupler::beginSubstepAverage() {

@@ -32,7 +32,9 @@
 #include "coupling/coupling_interval.hpp"
 #include "coupling/deposit.hpp"
 #include "coupling/drag/drag_law.hpp"
+#include "coupling/drag/particle_correction.hpp"
 #include "coupling/grid_topology.hpp"
+#include "coupling/size_classes.hpp"
 #include "coupling/interpolation.hpp"
 #include "coupling/stencil.hpp"
 #include "coupling/void_fraction/void_fraction_scheme.hpp"
@@ -75,6 +77,16 @@ enum class SubstepFluidFields {
   Interpolated,  // forces before every substep, fluid fields linear in time (seed 000 "Case II")
 };
 
+/// Correction applied on top of the drag law (coupling.drag_correction).
+enum class DragCorrection { None, Filtered };
+
+/// The filtered drag of Radl & Sundaresan (2014) with the parcel correction (drag/filtered.hpp).
+struct FilteredDragSettings {
+  double primaryDiameter = 0.0;  // d_prim of L_char, m; 0: Sauter mean of the particles at the first force pass
+  double parcelA = 0.0;          // a of c_corr(alpha), seed 003 eq. 3.36
+  double parcelK = 0.05;         // k of c_corr(alpha)
+};
+
 struct CouplerSettings {
   ExchangeModel model = ExchangeModel::A;  // from the fluid solver (fluid.model), not a coupling key
   std::string dragLaw = "di_felice";
@@ -84,6 +96,9 @@ struct CouplerSettings {
   ExchangeScheme exchange = ExchangeScheme::SemiImplicit;
   ForceSwitches forces;
   double smoothingLength = 0.0;  // m; 0 = off
+  bool smoothingAuto = false;    // smoothing_length: auto (seed 003 law, chosen at the first void fraction)
+  DragCorrection dragCorrection = DragCorrection::None;
+  FilteredDragSettings filteredDrag;
   bool smoothExchangeFields = false;
   double minVoidFraction = 0.1;
   double minRelaxationToIntervalRatio = 10.0;
@@ -114,6 +129,9 @@ class Coupler {
   static constexpr const char* kBetaSumColumn = "coupling.beta_sum";
   static constexpr const char* kDragSumColumn = "coupling.drag_sum";
   static constexpr const char* kOtherSumColumn = "coupling.other_sum";
+  /// The size class of each particle (index into sizeClasses().diameters(), as a double), written by
+  /// sizeStatistics().
+  static constexpr const char* kSizeClassColumn = "coupling.size_class";
 
   void computeVoidFraction(const dem::ParticleSet& particles, CouplingFields& fields);
   void computeParticleForces(const FluidView& fluid, const CouplingFields& fields, dem::ParticleSet& particles);
@@ -178,6 +196,15 @@ class Coupler {
   CouplingIntervalCheck checkCouplingInterval(double demTimeStep, int demStepsPerFluidStep,
                                               const dem::ParticleSet& particles, const FluidView& fluid,
                                               double slip) const;
+
+  /// Per-cell size statistics of `particles` (size_classes.hpp), computed now: phi_i per class,
+  /// the Sauter mean diameter and the mean particle velocity of each cell; writes each particle's
+  /// class into column kSizeClassColumn. The force pass computes them itself only for a
+  /// polydisperse law; monitors call this when they report per class.
+  const CellSizeStatistics& sizeStatistics(dem::ParticleSet& particles);
+  const SizeClasses& sizeClasses() const { return sizeClasses_; }
+  /// L_char of the filtered drag (m), 0 until the first force pass with drag_correction: filtered.
+  double filteredDragLength() const { return filterLength_; }
 
   const CouplerSettings& settings() const { return settings_; }
   const DragLaw& dragLaw() const { return *drag_; }
@@ -246,6 +273,12 @@ class Coupler {
   void smoothExchange(CouplingFields& fields, bool implicit) const;
   void updateMomentumBalance(const CouplingFields& fields, bool implicit, std::size_t particleCount);
   void fillGhosts(Field& f) const;
+  /// Statistics of `particles` into sizeStats_ (classes rebuilt when a diameter is not one of them).
+  void updateSizeStatistics(const dem::ParticleSet& particles);
+  /// The per-particle drag functor of a polydisperse law or the filtered correction.
+  ParticleCorrection particleCorrection(const FluidView& fluid, const dem::ParticleSet& particles);
+  /// smoothing_length: auto: the seed's law from the particles present (seed 003 Tab. 4.15, eq. 4.10).
+  void chooseSmoothingLength(const dem::ParticleSet& particles);
 
   CouplerSettings settings_;
   GridTopology topology_;
@@ -294,6 +327,14 @@ class Coupler {
   std::vector<double> volumeSums_;  // per thread, computeVoidFraction
   std::vector<std::array<double, 3>> runSums_;  // per interior row of cells (deposit_.runs)
   bool particleForceSumsValid_ = false;
+  // polydisperse laws and the filtered correction (particleCorrection)
+  SizeClasses sizeClasses_;
+  CellSizeStatistics sizeStats_;
+  std::vector<std::size_t> cellOfParticle_;
+  std::vector<int> classOfParticle_;
+  std::vector<double> sizeRatio_, mixtureReynolds_;
+  double filterLength_ = 0.0;
+  bool singleSizeWarned_ = false;
 };
 
 }  // namespace gf::coupling

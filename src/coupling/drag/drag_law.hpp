@@ -44,6 +44,19 @@ class DragLaw {
                         double* correction) const = 0;
   /// One value (tests, helpers; not for hot loops).
   virtual double correction(double reynolds, double voidFraction) const = 0;
+  /// Whether the law needs the particle's size ratio and its cell's mixture Reynolds number
+  /// (polydisperse laws, seed 003 sec. 3.1.3); the coupler then computes them (size_classes.hpp)
+  /// and calls polydisperseCorrection. correction(Re, eps) is then the law of a monodisperse
+  /// suspension (size ratio 1, the particle's own slip as the mixture slip).
+  virtual bool polydisperse() const { return false; }
+  /// f of a particle of size ratio y = d_i / <d> (<d> the Sauter mean diameter of its cell) at its
+  /// own Re and eps, in a cell of mixture Reynolds number reMix = rho |u_f - <v>| <d> / mu
+  /// (<v> the volume-weighted mean velocity of the cell's particles).
+  virtual double polydisperseCorrection(double reynolds, double voidFraction, double sizeRatio,
+                                        double mixtureReynolds) const {
+    (void)sizeRatio, (void)mixtureReynolds;
+    return correction(reynolds, voidFraction);
+  }
 };
 
 /// A DragLaw made from a pure function f(Re, eps); the loop over particles is monomorphic.
