@@ -14,6 +14,7 @@
 #include "coupling/deposit.hpp"
 #include "coupling/drag/dispatch.hpp"
 #include "coupling/drag/filtered.hpp"
+#include "coupling/drag/yin_sundaresan.hpp"
 #include "coupling/loops.hpp"
 #include "coupling/forces.hpp"
 #include "coupling/smoothing.hpp"
@@ -649,6 +650,7 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
     pass(particleCorrection(fluid, particles));
   else
     withDragCorrection(*drag_, pass);
+  if (w.drag && drag_->lubricationCutoff() > 0.0) addFluidMediatedFriction(fluid, fields, particles);
   exchangeSet_ = &particles;
   forceStamp_ = particles.layoutStamp;
   if (w.virtualMass) keepSlipAsPrevious(particles);
@@ -658,7 +660,7 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
   if (averaging_) accumulateSubstep(particles);
 }
 
-void Coupler::updateSizeStatistics(const dem::ParticleSet& particles) {
+void Coupler::updateSizeStatistics(const dem::ParticleSet& particles, bool classVelocities) {
   const double alpha = settings_.coarseGraining.factor;
   bool known = sizeClasses_.count() > 0;
   for (std::size_t p = 0; known && p < particles.size(); ++p) {
@@ -670,7 +672,8 @@ void Coupler::updateSizeStatistics(const dem::ParticleSet& particles) {
     for (std::size_t p = 0; p < particles.size(); ++p) diameters[p] = 2.0 * particles.radius[p] / alpha;
     sizeClasses_ = SizeClasses(std::move(diameters));
   }
-  computeCellSizeStatistics(topology_, particles, alpha, sizeClasses_, sizeStats_, cellOfParticle_, classOfParticle_);
+  computeCellSizeStatistics(topology_, particles, alpha, sizeClasses_, sizeStats_, cellOfParticle_, classOfParticle_,
+                            classVelocities);
 }
 
 const CellSizeStatistics& Coupler::sizeStatistics(dem::ParticleSet& particles) {
@@ -686,7 +689,7 @@ ParticleCorrection Coupler::particleCorrection(const FluidView& fluid, const dem
   c.law = drag_.get();
   const double alpha = settings_.coarseGraining.factor;
   if (drag_->polydisperse()) {
-    updateSizeStatistics(particles);
+    updateSizeStatistics(particles, drag_->lubricationCutoff() > 0.0);
     if (sizeClasses_.count() == 1 && !singleSizeWarned_) {
       spdlog::warn("coupling: drag_law {} with particles of one size ({:g} m): it reduces to its monodisperse form",
                    settings_.dragLaw, sizeClasses_.diameters().front());
@@ -735,6 +738,52 @@ ParticleCorrection Coupler::particleCorrection(const FluidView& fluid, const dem
     c.characteristicLength = filterLength_;
   }
   return c;
+}
+
+void Coupler::addFluidMediatedFriction(const FluidView& fluid, const CouplingFields& fields,
+                                       dem::ParticleSet& particles) {
+  // Per occupied cell, the friction force density on each class (yin_sundaresan.hpp, seed 003 eqs.
+  // 3.25-3.27), with the statistics of this force pass (particleCorrection); each particle takes
+  // the share V_p / sum_{class i in cell} V_p of its class's force.
+  const double lambda = drag_->lubricationCutoff();
+  const int nc = sizeStats_.classes;
+  const auto& diameters = sizeClasses_.diameters();
+  const double mu = fluid.viscosity;
+  const double epsFloor = std::max(settings_.minVoidFraction, 1e-6);
+  frictionSlot_.assign(sizeStats_.solidVolume.size(), -1);
+  frictionForce_.clear();
+  std::vector<double> beta(static_cast<std::size_t>(nc)), phi(static_cast<std::size_t>(nc));
+  std::vector<Vec3> velocity(static_cast<std::size_t>(nc));
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    const std::size_t q = cellOfParticle_[p];
+    if (frictionSlot_[q] < 0) {
+      frictionSlot_[q] = static_cast<int>(frictionForce_.size() / static_cast<std::size_t>(nc));
+      frictionForce_.resize(frictionForce_.size() + static_cast<std::size_t>(nc), Vec3{});
+      Vec3* force = frictionForce_.data() + frictionForce_.size() - static_cast<std::size_t>(nc);
+      const double eps = std::clamp(fields.voidFraction.data()[q], epsFloor, 1.0);
+      const double sauter = sizeStats_.sauterDiameter(q);
+      const double reMix = mixtureReynolds_[p];  // the cell's (particleCorrection)
+      for (int i = 0; i < nc; ++i) {
+        phi[i] = sizeStats_.classVolumeFraction(q, i);
+        if (!(phi[i] > 0.0)) continue;
+        const double normalised = drag::yinSundaresan(eps, diameters[i] / sauter, reMix) / eps;
+        beta[i] = drag::classFrictionCoefficient(phi[i], eps, mu, diameters[i], normalised);
+        velocity[i] = sizeStats_.classVelocity(q, i);
+      }
+      for (int i = 0; i < nc; ++i)
+        for (int j = 0; j < nc; ++j) {
+          if (j == i || !(phi[i] > 0.0) || !(phi[j] > 0.0)) continue;
+          const double alpha = drag::lubricationFactor(std::min(diameters[i], diameters[j]), lambda);
+          force[i] += drag::pairFrictionCoefficient(alpha, phi[i], phi[j], beta[i], beta[j]) * (velocity[j] - velocity[i]);
+        }
+    }
+    const int i = classOfParticle_[p];
+    const std::size_t k = q * static_cast<std::size_t>(nc) + static_cast<std::size_t>(i);
+    const Vec3 density = frictionForce_[static_cast<std::size_t>(frictionSlot_[q]) * static_cast<std::size_t>(nc) +
+                                        static_cast<std::size_t>(i)];
+    particles.externalForce[p] += (force::sphereVolume(2.0 * particles.radius[p]) / sizeStats_.classVolume[k] *
+                                   sizeStats_.cellVolume) * density;
+  }
 }
 
 void Coupler::chooseSmoothingLength(const dem::ParticleSet& particles) {

@@ -274,7 +274,10 @@ class Coupler {
   void updateMomentumBalance(const CouplingFields& fields, bool implicit, std::size_t particleCount);
   void fillGhosts(Field& f) const;
   /// Statistics of `particles` into sizeStats_ (classes rebuilt when a diameter is not one of them).
-  void updateSizeStatistics(const dem::ParticleSet& particles);
+  void updateSizeStatistics(const dem::ParticleSet& particles, bool classVelocities = false);
+  /// Adds the fluid-mediated particle-particle friction of the law (yin_sundaresan with
+  /// fluid_mediated_friction) to the particles' external forces (not exchanged with the fluid).
+  void addFluidMediatedFriction(const FluidView& fluid, const CouplingFields& fields, dem::ParticleSet& particles);
   /// The per-particle drag functor of a polydisperse law or the filtered correction.
   ParticleCorrection particleCorrection(const FluidView& fluid, const dem::ParticleSet& particles);
   /// smoothing_length: auto: the seed's law from the particles present (seed 003 Tab. 4.15, eq. 4.10).
@@ -333,6 +336,8 @@ class Coupler {
   std::vector<std::size_t> cellOfParticle_;
   std::vector<int> classOfParticle_;
   std::vector<double> sizeRatio_, mixtureReynolds_;
+  std::vector<int> frictionSlot_;     // per cell: its slot in frictionForce_, or -1
+  std::vector<Vec3> frictionForce_;   // [slot * classes + i]: friction force density on class i, N/m^3
   double filterLength_ = 0.0;
   bool singleSizeWarned_ = false;
 };

@@ -35,7 +35,8 @@ int SizeClasses::classOf(double d) const {
 
 void computeCellSizeStatistics(const GridTopology& topology, const dem::ParticleSet& particles,
                                double coarseGrainingFactor, const SizeClasses& classes, CellSizeStatistics& out,
-                               std::vector<std::size_t>& cellOfParticle, std::vector<int>& classOfParticle) {
+                               std::vector<std::size_t>& cellOfParticle, std::vector<int>& classOfParticle,
+                               bool classVelocities) {
   const CartesianGrid& g = topology.grid;
   const std::size_t cells = static_cast<std::size_t>(g.cells[0] + 2 * g.ghosts) *
                             static_cast<std::size_t>(g.cells[1] + 2 * g.ghosts) *
@@ -46,6 +47,8 @@ void computeCellSizeStatistics(const GridTopology& topology, const dem::Particle
   out.volumeOverDiameter.assign(cells, 0.0);
   out.volumeVelocity.assign(cells, Vec3{});
   out.classVolume.assign(cells * static_cast<std::size_t>(out.classes), 0.0);
+  if (classVelocities) out.classVolumeVelocity.assign(cells * static_cast<std::size_t>(out.classes), Vec3{});
+  else out.classVolumeVelocity.clear();
   const std::size_t n = particles.size();
   cellOfParticle.resize(n);
   classOfParticle.resize(n);
@@ -61,7 +64,9 @@ void computeCellSizeStatistics(const GridTopology& topology, const dem::Particle
     out.solidVolume[q] += volume;
     out.volumeOverDiameter[q] += volume / primary;
     out.volumeVelocity[q] += volume * particles.velocity[p];
-    out.classVolume[q * static_cast<std::size_t>(out.classes) + static_cast<std::size_t>(i)] += volume;
+    const std::size_t k = q * static_cast<std::size_t>(out.classes) + static_cast<std::size_t>(i);
+    out.classVolume[k] += volume;
+    if (classVelocities) out.classVolumeVelocity[k] += volume * particles.velocity[p];
   }
 }
 

@@ -28,7 +28,7 @@ namespace gf::coupling {
 
 class SizeClasses {
  public:
-  static constexpr int kMaxSizeClasses = 32;
+  static constexpr int kMaxSizeClasses = 16;
   SizeClasses() = default;
   /// The classes of these primary diameters (any order, repeats allowed).
   explicit SizeClasses(std::vector<double> primaryDiameters);
@@ -54,6 +54,7 @@ struct CellSizeStatistics {
   std::vector<double> volumeOverDiameter;  // sum V_p / d_p, m^2
   std::vector<Vec3> volumeVelocity;        // sum V_p v_p, m^4/s
   std::vector<double> classVolume;         // [q * classes + i]: sum V_p of class i, m^3
+  std::vector<Vec3> classVolumeVelocity;   // [q * classes + i]: sum V_p v_p of class i (if asked for), m^4/s
 
   /// <d> of cell q (0 if it holds no particle), m.
   double sauterDiameter(std::size_t q) const {
@@ -63,6 +64,11 @@ struct CellSizeStatistics {
   double classVolumeFraction(std::size_t q, int i) const {
     return classVolume[q * static_cast<std::size_t>(classes) + static_cast<std::size_t>(i)] / cellVolume;
   }
+  /// Mean velocity of class i in cell q (zero if absent; needs classVolumeVelocity), m/s.
+  Vec3 classVelocity(std::size_t q, int i) const {
+    const std::size_t k = q * static_cast<std::size_t>(classes) + static_cast<std::size_t>(i);
+    return classVolume[k] > 0.0 ? (1.0 / classVolume[k]) * classVolumeVelocity[k] : Vec3{};
+  }
   /// <v> of cell q (zero if empty), m/s.
   Vec3 meanParticleVelocity(std::size_t q) const {
     return solidVolume[q] > 0.0 ? (1.0 / solidVolume[q]) * volumeVelocity[q] : Vec3{};
@@ -70,9 +76,11 @@ struct CellSizeStatistics {
 };
 
 /// Fills `out` for `particles` (cells: cell-centred fields of `topology`); cellOfParticle[p] is the
-/// flat index of particle p's cell, classOfParticle[p] its class.
+/// flat index of particle p's cell, classOfParticle[p] its class; classVelocities: also
+/// classVolumeVelocity (else left empty).
 void computeCellSizeStatistics(const GridTopology& topology, const dem::ParticleSet& particles,
                                double coarseGrainingFactor, const SizeClasses& classes, CellSizeStatistics& out,
-                               std::vector<std::size_t>& cellOfParticle, std::vector<int>& classOfParticle);
+                               std::vector<std::size_t>& cellOfParticle, std::vector<int>& classOfParticle,
+                               bool classVelocities = false);
 
 }  // namespace gf::coupling

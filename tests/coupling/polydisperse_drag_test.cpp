@@ -86,6 +86,18 @@ TEST(PolydisperseDrag, YinSundaresanMonodisperseLimitIsBeetstra) {
   EXPECT_FALSE(makeLaw("beetstra")->polydisperse());
 }
 
+TEST(PolydisperseDrag, FluidMediatedFrictionCoefficients) {
+  // eq. 3.27: alpha = 1.313 log10(40 um / 0.1 um) - 1.249 = 1.313 * 2.602060 - 1.249 = 2.167505;
+  // clamped at 0 once lambda > 0.112 d
+  EXPECT_NEAR(drag::lubricationFactor(40e-6, 1e-7), 2.167505, 1e-6);
+  EXPECT_EQ(drag::lubricationFactor(40e-6, 5e-6), 0.0);
+  // eq. 3.26: 2 alpha phi_i phi_j / (phi_i/beta_i + phi_j/beta_j), alpha 2.167505, phi 0.01 and 0.03,
+  // beta 50 and 400: 2 * 2.167505 * 3e-4 / (2e-4 + 7.5e-5) = 4.729101
+  EXPECT_NEAR(drag::pairFrictionCoefficient(2.167505, 0.01, 0.03, 50.0, 400.0), 4.729101, 1e-5);
+  // eq. 3.23: 18 phi_i eps mu / d^2 F* = 18 * 0.01 * 0.9 * 2e-5 / 1e-10 * 3 = 97200
+  EXPECT_NEAR(drag::classFrictionCoefficient(0.01, 0.9, 2e-5, 1e-5, 3.0), 97200.0, 1e-8);
+}
+
 TEST(FilteredDrag, SplineValuesAndKnots) {
   // Radl & Sundaresan (2014) splines, values from the published coefficients:
   // a(0.01) = 21.51 (dilute piece), a(0.05) = 3.6019, a(0.15) = 4.11565, a(0.3) = 2.28949125;
@@ -293,4 +305,44 @@ TEST(PolydisperseCoupling, FilteredCorrectionScalesTheBeetstraDrag) {
   const double expected = drag::parcelDragCorrection(2.0) * drag::filteredDragCorrection(phi, 1e-3, length);
   EXPECT_LT(expected, 0.96);
   for (std::size_t p = 0; p < 3; ++p) EXPECT_NEAR(filtered[p] / plain[p], expected, 1e-13) << p;
+}
+
+TEST(PolydisperseCoupling, FluidMediatedFrictionPullsTheClassesTogetherAndConservesMomentum) {
+  PolydisperseCell cell;
+  auto run = [&](const std::string& extra) {
+    auto coupler = makeCoupler("  void_fraction: pcm\n  interpolation: cell\n  drag_law: yin_sundaresan\n" + extra, cell.g);
+    dem::ParticleSet copy = cell.s;
+    coupler->computeVoidFraction(copy, cell.fields);
+    coupler->computeParticleForces(cell.fluid.view(0.804, 2.444e-5), cell.fields, copy);
+    return copy.externalForce;
+  };
+  const auto without = run("");
+  const auto with = run("  fluid_mediated_friction: true\n  lubrication_cutoff: 1e-7\n");
+  Vec3 sum{};
+  std::vector<double> fz;
+  for (std::size_t p = 0; p < 3; ++p) {
+    const Vec3 friction = with[p] - without[p];
+    EXPECT_NEAR(friction.x, 0.0, 1e-30);
+    fz.push_back(friction.z);
+    sum += friction;
+  }
+  // class 0 (particles 0, 1; mean v_z -0.025) is pulled down towards class 1 (v_z -0.10), which is held back
+  EXPECT_LT(fz[0], 0.0);
+  EXPECT_LT(fz[1], 0.0);
+  EXPECT_GT(fz[2], 0.0);
+  EXPECT_NEAR(fz[0] / fz[1], 1.0, 1e-9);  // same class, same volume: equal shares (to the round-off of with - without)
+  EXPECT_NEAR(sum.z / fz[2], 0.0, 1e-9);  // internal to the particles: no momentum to the fluid
+  // magnitude: beta_01 (v_1 - v_0) V_cell shared over the class's particles
+  const double eps = cell.fields.voidFraction(1, 1, 1), cellVolume = 1e-9, mu = 2.444e-5;
+  const double v0 = std::pow(40e-6, 3) * std::numbers::pi / 6, v1 = std::pow(120e-6, 3) * std::numbers::pi / 6;
+  const double phi0 = 2 * v0 / cellVolume, phi1 = v1 / cellVolume;
+  const double sauter = (2 * v0 + v1) / (2 * v0 / 40e-6 + v1 / 120e-6);
+  const double meanVz = (v0 * (-0.02 - 0.03) + v1 * -0.10) / (2 * v0 + v1);
+  const double reMix = 0.804 * std::abs(meanVz) * sauter / mu;
+  const double beta0 = drag::classFrictionCoefficient(phi0, eps, mu, 40e-6, drag::yinSundaresan(eps, 40e-6 / sauter, reMix) / eps);
+  const double beta1 = drag::classFrictionCoefficient(phi1, eps, mu, 120e-6, drag::yinSundaresan(eps, 120e-6 / sauter, reMix) / eps);
+  const double beta01 = drag::pairFrictionCoefficient(drag::lubricationFactor(40e-6, 1e-7), phi0, phi1, beta0, beta1);
+  EXPECT_NEAR(fz[2] / (beta01 * (-0.025 - -0.10) * cellVolume), 1.0, 1e-9);
+  // the keys belong to yin_sundaresan: with another law they are unknown
+  EXPECT_THROW(makeCoupler("  drag_law: beetstra\n  fluid_mediated_friction: true\n", cell.g), CaseError);
 }

@@ -57,6 +57,9 @@ class DragLaw {
     (void)sizeRatio, (void)mixtureReynolds;
     return correction(reynolds, voidFraction);
   }
+  /// The lubrication cutoff length lambda (m) of the law's fluid-mediated particle-particle
+  /// friction (yin_sundaresan with fluid_mediated_friction), 0 if it has none.
+  virtual double lubricationCutoff() const { return 0.0; }
 };
 
 /// A DragLaw made from a pure function f(Re, eps); the loop over particles is monomorphic.

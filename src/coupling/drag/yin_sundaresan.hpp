@@ -9,8 +9,19 @@
 // diameter (eq. 3.5). In the convention of drag_law.hpp: f = eps F*_i, and with
 // reMix = rho |dU_mix| <d> / mu (no eps), Re_mix = eps reMix. At y_i = 1 with the particle's
 // slip as the mixture slip this is the monodisperse Beetstra law (to round-off).
-// The fluid-mediated particle-particle friction of eqs. 3.25-3.27 is not included (the seed
-// neglects it for its particle-to-fluid density ratio of O(2300), seed 003 sec. 2.2).
+// Fluid-mediated particle-particle friction (eqs. 3.25-3.27, optional: the seed neglects it for its
+// particle-to-fluid density ratio of O(2300), sec. 2.2): per unit volume, class i feels
+//   sum_{j != i} beta_ij (v_j - v_i),  beta_ij = 2 alpha_ij phi_i phi_j / (phi_i/beta_i + phi_j/beta_j),
+//   beta_i = 18 phi_i (1 - phi) mu / d_i^2 F*_i                      (eqs. 3.23, 3.26)
+//   alpha_ij = 1.313 log10(min(d_i, d_j) / lambda) - 1.249             (eq. 3.27)
+// with lambda the lubrication cutoff length. The sign is that of a friction (it drives the class
+// velocities together and cancels in the sum over classes); eq. 3.25 as printed in the seed writes
+// it with the opposite sign, which would feed energy into the relative motion. alpha_ij is clamped
+// at 0 (it turns negative for lambda > 0.112 min(d_i, d_j), outside the fit's range lambda/d =
+// 1e-3 ... 1e-2).
+#include <algorithm>
+#include <cmath>
+
 #include "coupling/drag/beetstra.hpp"
 
 namespace gf::coupling::drag {
@@ -26,6 +37,22 @@ inline double yinSundaresan(double eps, double sizeRatio, double reMix) {
   const double isolated = 1.0 / eps;
   const double fixed = isolated + (beetstraNormalisedForce(eps * reMix, eps) - isolated) * (a * y + (1.0 - a) * y * y);
   return eps * fixed;
+}
+
+/// alpha_ij of eq. 3.27 for the smaller diameter of the pair and the lubrication cutoff lambda (m).
+inline double lubricationFactor(double smallerDiameter, double cutoff) {
+  return std::max(0.0, 1.313 * std::log10(smallerDiameter / cutoff) - 1.249);
+}
+
+/// beta_i of eq. 3.23 (kg/(m^3 s)) from the class's volume fraction, eps, viscosity, diameter and F*_i.
+inline double classFrictionCoefficient(double classFraction, double eps, double viscosity, double diameter,
+                                       double normalisedForce) {
+  return 18.0 * classFraction * eps * viscosity / (diameter * diameter) * normalisedForce;
+}
+
+/// beta_ij of eq. 3.26 (kg/(m^3 s)).
+inline double pairFrictionCoefficient(double alpha, double phiI, double phiJ, double betaI, double betaJ) {
+  return 2.0 * alpha * phiI * phiJ / (phiI / betaI + phiJ / betaJ);
 }
 
 }  // namespace gf::coupling::drag
