@@ -7,6 +7,10 @@
 
 #include <cmath>
 #include <numbers>
+#include <sstream>
+
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 #include <string>
 
 #include "coupling/drag/beetstra.hpp"
@@ -345,4 +349,44 @@ TEST(PolydisperseCoupling, FluidMediatedFrictionPullsTheClassesTogetherAndConser
   EXPECT_NEAR(fz[2] / (beta01 * (-0.025 - -0.10) * cellVolume), 1.0, 1e-9);
   // the keys belong to yin_sundaresan: with another law they are unknown
   EXPECT_THROW(makeCoupler("  drag_law: beetstra\n  fluid_mediated_friction: true\n", cell.g), CaseError);
+}
+
+TEST(PolydisperseCoupling, AutoSmoothingLengthIsChosenFromTheParticlesAndPrinted) {
+  // 3 parcels of 60 um and 120 um (coarse-graining factor 10: primaries 6 and 12 um) in a 3 mm cube:
+  // d32 = (2 * 6^3 + 12^3) / (2 * 6^2 + 12^2) um = 2160 / 216 um = 10 um;
+  // <phi_p> = (2 V(60 um) + V(120 um)) / 27 mm^3; l = 8.06 d32 (1e-3 / <phi_p>)^(1/3)
+  const CartesianGrid g = makeGrid({3, 3, 3}, {1e-3, 1e-3, 1e-3});
+  auto coupler = makeCoupler("  smoothing_length: auto\n  coarse_grain_factor: 10\n", g);
+  dem::ParticleSet s;
+  s.add(0, 0, 30e-6, 2250.0, g.cellCentre(0, 0, 0));
+  s.add(1, 0, 30e-6, 2250.0, g.cellCentre(1, 1, 1));
+  s.add(2, 0, 60e-6, 2250.0, g.cellCentre(2, 2, 2));
+  CouplingFields fields(g);
+  std::ostringstream log;
+  const auto previous = spdlog::default_logger();
+  spdlog::set_default_logger(
+      std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
+  coupler->computeVoidFraction(s, fields);
+  spdlog::set_default_logger(previous);
+  const double phi = (2 * std::pow(60e-6, 3) + std::pow(120e-6, 3)) * std::numbers::pi / 6 / 27e-9;
+  EXPECT_NEAR(coupler->settings().smoothingLength / (8.06 * 10e-6 * std::cbrt(1e-3 / phi)), 1.0, 1e-12);
+  EXPECT_NE(log.str().find("smoothing_length auto"), std::string::npos) << log.str();
+}
+
+TEST(PolydisperseCoupling, OneParticleSizeWarnsThatThePolydisperseLawReducesToMonodisperse) {
+  const CartesianGrid g = makeGrid({3, 3, 3}, {1e-3, 1e-3, 1e-3});
+  auto coupler = makeCoupler("  drag_law: beetstra_polydisperse\n", g);
+  dem::ParticleSet s = randomParticles(20, 40e-6, 40e-6, {0, 0, 0}, {3e-3, 3e-3, 3e-3});
+  FluidFields fluid(g);
+  CouplingFields fields(g);
+  std::ostringstream log;
+  const auto previous = spdlog::default_logger();
+  spdlog::set_default_logger(
+      std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
+  coupler->computeVoidFraction(s, fields);
+  coupler->computeParticleForces(fluid.view(0.804, 2.444e-5), fields, s);
+  spdlog::set_default_logger(previous);
+  EXPECT_NE(log.str().find("reduces to its monodisperse form"), std::string::npos) << log.str();
+  // y = 1 everywhere: the monodisperse form, beetstra x (1 + 0.064 eps) (beetstra_polydisperse.hpp)
+  EXPECT_EQ(coupler->sizeClasses().count(), 1);
 }
