@@ -8,10 +8,10 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <string>
 
 #include <spdlog/sinks/ostream_sink.h>
 #include <spdlog/spdlog.h>
-#include <string>
 
 #include "coupling/drag/beetstra.hpp"
 #include "coupling/drag/beetstra_polydisperse.hpp"
