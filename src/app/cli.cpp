@@ -20,6 +20,7 @@
 #include "app/simulation.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "parallel/environment.hpp"
 #include "grainflow_version.hpp"
 
 namespace gf::app {
@@ -27,6 +28,30 @@ namespace gf::app {
 namespace {
 
 void printError(const std::string& message) { std::fprintf(stderr, "grainflow: %s\n", message.c_str()); }
+
+/// Under MPI: whether this process is a rank other than 0.
+bool otherRank() { return parallel::Environment::initialised() && parallel::Environment::instance().rank() != 0; }
+
+/// An error that every rank meets the same way (a case-file error: every rank reads the same
+/// file; a divergence: the health check is collective): printed once, by rank 0.
+int collectiveError(const std::string& message, int code) {
+  if (!otherRank()) printError(message);
+  return code;
+}
+
+/// An error that may have struck this rank alone (a file it could not write or read): printed with
+/// its rank, and under MPI every rank is stopped with the same exit code (the others may be waiting
+/// for this one).
+int rankError(const std::string& message, int code) {
+  if (!parallel::Environment::initialised() || parallel::Environment::instance().size() == 1) {
+    printError(message);
+    return code;
+  }
+  printError(fmt::format("rank {}: {}", parallel::Environment::instance().rank(), message));
+  std::fflush(stderr);
+  parallel::Environment::instance().abortAll(code);
+  return code;
+}
 
 int commandCheck(const std::string& caseFile, int threads) {
   setThreadCount(threads);
@@ -45,14 +70,23 @@ int commandCheck(const std::string& caseFile, int threads) {
   return kExitOk;
 }
 
-int commandRun(const std::string& caseFile, const RunOptions& options) {
+int commandRun(const std::string& caseFile, RunOptions options) {
   setThreadCount(options.threads);
   auto simulation = Simulation::fromFile(caseFile, options);
+  // Under MPI only rank 0 reports (progress, timing, warnings); every rank stops on an error, and
+  // rank 0 prints it.
+  if (!simulation->rootRank()) {
+    options.quiet = true;
+    spdlog::set_level(spdlog::level::err);
+  }
   simulation->prepare();
   const auto& s = simulation->settings();
+  const long long particleCount = simulation->dem().globalParticleCount();
+  const int ranks = simulation->decomposition().ranks();
   if (!options.quiet)
-    std::printf("grainflow %s: case '%s', %zu particles, %d thread(s), output in %s\n", GRAINFLOW_VERSION,
-                s.name.c_str(), simulation->dem().particles().size(), threadCount(), s.outputDirectory.c_str());
+    std::printf("grainflow %s: case '%s', %lld particles, %s%d thread(s)%s, output in %s\n", GRAINFLOW_VERSION,
+                s.name.c_str(), particleCount, ranks > 1 ? fmt::format("{} ranks ({}) x ", ranks, simulation->decomposition().describe()).c_str() : "",
+                threadCount(), ranks > 1 ? " each" : "", s.outputDirectory.c_str());
   std::fflush(stdout);
   const auto start = std::chrono::steady_clock::now();
   const double startTime = simulation->time();
@@ -61,6 +95,7 @@ int commandRun(const std::string& caseFile, const RunOptions& options) {
   try {
     status = simulation->run();
   } catch (const DivergenceError& e) {
+    if (!simulation->rootRank()) return kExitDiverged;  // (the same error on every rank; rank 0 prints it)
     printError(e.what());
     const std::string last = simulation->lastGoodCheckpoint();
     printError(last.empty() ? "no checkpoint had been written before the divergence"
@@ -69,6 +104,7 @@ int commandRun(const std::string& caseFile, const RunOptions& options) {
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (status == RunStatus::Interrupted) {
+    if (!simulation->rootRank()) return kExitInterrupted;
     printError(fmt::format("interrupted at t = {:.6g} s (step {}); checkpoint written to {} (continue with --restart)",
                            simulation->time(), simulation->step(), simulation->checkpointPath()));
     return kExitInterrupted;
@@ -208,20 +244,15 @@ int runCommandLine(int argc, char** argv) {
       return kExitOk;
     }
   } catch (const CaseError& e) {
-    printError(e.what());
-    return kExitInvalidCase;
+    return collectiveError(e.what(), kExitInvalidCase);
   } catch (const CheckpointError& e) {
-    printError(e.what());
-    return kExitCheckpoint;
+    return rankError(e.what(), kExitCheckpoint);
   } catch (const DivergenceError& e) {
-    printError(e.what());
-    return kExitDiverged;
+    return collectiveError(e.what(), kExitDiverged);
   } catch (const Error& e) {
-    printError(e.what());
-    return kExitIo;
+    return rankError(e.what(), kExitIo);
   } catch (const std::filesystem::filesystem_error& e) {
-    printError(e.what());
-    return kExitIo;
+    return rankError(e.what(), kExitIo);
   }
   return kExitUsage;
 }

@@ -16,6 +16,8 @@
 #include "core/serialize.hpp"
 #include "io/atomic_file.hpp"
 #include "io/checkpoint.hpp"
+#include "parallel/environment.hpp"
+#include "parallel/exchange.hpp"
 
 namespace gf::app {
 
@@ -68,7 +70,8 @@ std::uint64_t fingerprintOf(const std::vector<ResolvedKey>& keys) {
   for (const ResolvedKey& k : keys) {
     const std::string& p = k.path;
     if (p.rfind("output", 0) == 0 || p.rfind("checkpoint", 0) == 0 || p.rfind("monitors", 0) == 0 ||
-        p.rfind("run.", 0) == 0 || p == "time.end" || p.rfind("case.description", 0) == 0)
+        p.rfind("run.", 0) == 0 || p == "time.end" || p.rfind("case.description", 0) == 0 ||
+        p == "domain.decomposition")  // (a run may continue on another number of ranks)
       continue;
     hash = fnv1a(p.data(), p.size(), hash);
     hash = fnv1a(k.value.data(), k.value.size(), hash);
@@ -100,17 +103,49 @@ int pendingSignal() { return gSignal.load(); }
 
 // ------------------------------------------------------------------ construction
 
+namespace {
+/// The ranks' layout: one rank without an MPI launcher (MPI is then not even initialised), else
+/// domain.decomposition over the launcher's ranks, cut along the fluid grid's cells if the case
+/// has a fluid.
+parallel::Decomposition decompositionOf(Params& root, const Domain& domain) {
+  if (root.documenting() || !parallel::Environment::launched()) return parallel::Decomposition(domain, {1, 1, 1}, 1, 0);
+  const parallel::Environment& env = parallel::Environment::instance();
+  if (env.size() == 1) return parallel::Decomposition(domain, {1, 1, 1}, 1, 0);
+  std::array<int, 3> cells{0, 0, 0};
+  if (root.has("fluid")) {
+    Params fluid = root.section({"fluid"});
+    const Vec3 n = fluid.vec3({"cells", "-", "grid cells per direction [nx, ny, nz]; nz = 1 is 2D"}, Vec3{16, 16, 16});
+    for (int a = 0; a < 3; ++a) cells[a] = std::max(1, static_cast<int>(n[a]));
+  }
+  try {
+    return parallel::Decomposition(domain, domain.decomposition, env.size(), env.rank(), cells);
+  } catch (const std::invalid_argument& e) {
+    root.section({"domain"}).fail("decomposition", e.what(),
+                                  fmt::format("auto or [px, py, pz] with px * py * pz = {} ranks", env.size()));
+  }
+}
+}  // namespace
+
+void Simulation::synchroniseRanks() const {
+  if (decomposition_.distributed()) (void)parallel::anyOverRanks(false);
+}
+
 Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptions& options)
     : options_(options), caseFile_(caseFile) {
   settings_ = CaseSettings::read(root, caseFile);
   if (options.endTime) settings_.endTime = *options.endTime;
   if (options.outputDirectory) settings_.outputDirectory = *options.outputDirectory;
   domain_ = Domain::read(root);
+  decomposition_ = decompositionOf(root, domain_);
   // A restart brings its particles from the checkpoint (prepare()): no initial insertion; the
   // coupling-interval check, which needs the particles, runs after the restore.
   const auto initial = options.restartFile ? dem::InitialParticles::FromCheckpoint : dem::InitialParticles::Insert;
-  dem_ = std::make_unique<dem::System>(root, domain_, settings_.gravity, initial);
+  dem_ = std::make_unique<dem::System>(root, domain_, settings_.gravity, initial, decomposition_);
   checkTimeStep(root);
+  if (decomposition_.distributed() && root.has("fluid"))
+    root.section({"domain"}).fail(
+        "decomposition", fmt::format("{} ranks for a case with a fluid", decomposition_.ranks()),
+        "one rank (run without mpirun): so far only DEM-only cases run on several ranks");
   if (root.documenting() || root.has("fluid")) fluid_ = std::make_unique<fluid::Solver>(root, domain_, settings_.gravity);
   if (root.documenting() || root.has("coupling")) {
     if (!fluid_) root.fail("coupling", "a 'coupling' section without a 'fluid' section", "a 'fluid' section as well");
@@ -207,11 +242,15 @@ void Simulation::prepare() {
   const fs::path dir(settings_.outputDirectory);
   std::error_code ec;
   const bool restarting = options_.restartFile.has_value();
-  if (fs::exists(dir / "run.yaml", ec) && !restarting && !options_.overwrite)
+  // (every rank checks before rank 0 creates anything: all stop with the same error, or none)
+  const bool taken = fs::exists(dir / "run.yaml", ec);
+  synchroniseRanks();
+  if (taken && !restarting && !options_.overwrite)
     throw Error(fmt::format("output directory '{}' already holds a run (run.yaml); pass --overwrite to replace it "
                             "or --output to choose another directory",
                             dir.string()));
-  fs::create_directories(dir, ec);
+  if (rootRank()) fs::create_directories(dir, ec);
+  synchroniseRanks();
   if (ec || !fs::is_directory(dir))
     throw Error(fmt::format("output directory '{}' cannot be created: {}", dir.string(),
                             ec ? ec.message() : "a file of that name exists"));
@@ -219,15 +258,17 @@ void Simulation::prepare() {
     throw Error(fmt::format("output directory '{}' is not writable", dir.string()));
   if (restarting) {
     restoreCheckpoint(*options_.restartFile);
-  } else if (options_.overwrite) {
+  } else if (options_.overwrite && rootRank()) {
     for (const auto& entry : fs::directory_iterator(dir)) {
       const std::string ext = entry.path().extension().string();
       if (ext == ".vtu" || ext == ".vti" || ext == ".pvd" || ext == ".csv" || ext == ".bin") fs::remove(entry.path());
     }
   }
-  io::writeFileAtomically((dir / "run.yaml").string(),
-                          fmt::format("# grainflow resolved case ({}), every key with its value and unit\n{}",
-                                      caseFile_, resolvedCaseText_));
+  if (rootRank())
+    io::writeFileAtomically((dir / "run.yaml").string(),
+                            fmt::format("# grainflow resolved case ({}), every key with its value and unit\n{}",
+                                        caseFile_, resolvedCaseText_));
+  synchroniseRanks();
 }
 
 void Simulation::writeCheckpoint(const std::string& path) const {
@@ -240,7 +281,9 @@ void Simulation::writeCheckpoint(const std::string& path) const {
   if (fluid_) fluid_->save(out);
   if (coupler_) coupler_->save(out, dem_->particles());
   for (const MonitorSlot& m : monitors_) m.monitor->save(out);
-  io::writeCheckpoint(path, fingerprint_, out);
+  // (the state is gathered on rank 0, which writes the one file; the others wait for it)
+  if (rootRank()) io::writeCheckpoint(path, fingerprint_, out);
+  synchroniseRanks();
 }
 
 void Simulation::restoreCheckpoint(const std::string& path) {
@@ -267,11 +310,14 @@ void Simulation::restoreCheckpoint(const std::string& path) {
   }
   for (MonitorSlot& m : monitors_) m.monitor->load(in);
   if (!in.atEnd()) throw CheckpointError(fmt::format("checkpoint '{}' has trailing data (written by another case?)", path));
-  particleSeries_.load();
-  particleSeries_.truncateAfter(time());
-  fluidSeries_.load();
-  fluidSeries_.truncateAfter(time());
-  for (MonitorSlot& m : monitors_) m.series.resumeFrom(time());
+  if (rootRank()) {
+    particleSeries_.load();
+    particleSeries_.truncateAfter(time());
+    fluidSeries_.load();
+    fluidSeries_.truncateAfter(time());
+    for (MonitorSlot& m : monitors_) m.series.resumeFrom(time());
+  }
+  synchroniseRanks();
   lastCheckpoint_ = path;
 }
 
@@ -320,7 +366,7 @@ void Simulation::forcesOnParticles(const coupling::FluidView& fluid) {
 }
 
 RunState Simulation::state() const {
-  return RunState{time(), step_, dem_.get(), fluid_.get(), coupler_.get(), settings_.gravity};
+  return RunState{time(), step_, dem_.get(), fluid_.get(), coupler_.get(), settings_.gravity, nullptr};
 }
 
 void Simulation::checkHealth() const {
@@ -333,8 +379,14 @@ void Simulation::writeOutput() {
   const fs::path dir(settings_.outputDirectory);
   if (settings_.writeParticles) {
     const std::string file = fmt::format("particles_{:06d}.vtu", outputCount_);
-    io::writeFileAtomically((dir / file).string(), io::particlesVtu(dem_->particles()));
-    particleSeries_.add(time(), file);
+    if (decomposition_.distributed()) {
+      // (gathered on rank 0, which writes one file)
+      const dem::ParticleSet all = dem_->gatherParticles();
+      if (rootRank()) io::writeFileAtomically((dir / file).string(), io::particlesVtu(all));
+    } else {
+      io::writeFileAtomically((dir / file).string(), io::particlesVtu(dem_->particles()));
+    }
+    if (rootRank()) particleSeries_.add(time(), file);
   }
   if (fluid_ && settings_.writeFluid) {
     const std::string file = fmt::format("fluid_{:06d}.vti", outputCount_);
@@ -349,11 +401,23 @@ void Simulation::writeOutput() {
 
 void Simulation::sampleMonitors(bool force) {
   ScopedPhase timer(appTimers_, Phase::Output);
-  const RunState s = state();
+  RunState s = state();
+  // Under MPI every rank samples (the DEM's sums are collective) and rank 0 writes the rows;
+  // monitors that loop over particles read the particles gathered on rank 0.
+  dem::ParticleSet gathered;
+  if (decomposition_.distributed()) {
+    bool due = force;
+    for (std::size_t m = 0; m < monitors_.size() && !due; ++m)
+      due = s.time + 0.5 * settings_.demStep >= nextMonitorTime_[m];
+    if (!due) return;
+    gathered = dem_->gatherParticles();
+    s.particles = &gathered;
+  }
   const double tolerance = 0.5 * settings_.demStep;
   for (std::size_t m = 0; m < monitors_.size(); ++m) {
     if (!force && s.time + tolerance < nextMonitorTime_[m]) continue;
-    for (const std::vector<double>& row : monitors_[m].monitor->sampleRows(s)) monitors_[m].series.addRow(s.time, row);
+    for (const std::vector<double>& row : monitors_[m].monitor->sampleRows(s))
+      if (rootRank()) monitors_[m].series.addRow(s.time, row);
     const double interval = monitors_[m].interval;
     nextMonitorTime_[m] = interval > 0.0 ? (std::floor((s.time + tolerance) / interval) + 1.0) * interval : 0.0;
   }
@@ -372,6 +436,7 @@ void Simulation::saveGoodState() {
 }
 
 void Simulation::flushMonitors() {
+  if (!rootRank()) return;
   for (MonitorSlot& m : monitors_) m.series.flush();
 }
 
@@ -442,7 +507,7 @@ std::string Simulation::timingTable(double wallSeconds, double simulatedSeconds)
   out += fmt::format("{:<18} {:>10.3f} {:>6.1f}%\n", "other", other, wallSeconds > 0 ? 100.0 * other / wallSeconds : 0.0);
   out += fmt::format("{:<18} {:>10.3f}\n", "total", wallSeconds);
   if (simulatedSeconds > 0.0) {
-    const double particleSteps = static_cast<double>(dem_->particles().size()) * simulatedSeconds / settings_.demStep;
+    const double particleSteps = static_cast<double>(dem_->globalParticleCount()) * simulatedSeconds / settings_.demStep;
     out += fmt::format("throughput         {:.4g} s wall per simulated second", wallSeconds / simulatedSeconds);
     if (particleSteps > 0.0) out += fmt::format(", {:.4g} ns per particle-step (all phases)", 1e9 * wallSeconds / particleSteps);
     out += "\n";

@@ -16,6 +16,7 @@
 #include "fluid/solver.hpp"
 #include "io/csv_series.hpp"
 #include "io/vtk.hpp"
+#include "parallel/decomposition.hpp"
 
 namespace gf::app {
 
@@ -90,6 +91,9 @@ class Simulation {
   /// Every key of the case with its value (defaults filled in) and unit.
   const std::string& resolvedCase() const { return resolvedCaseText_; }
   RunState state() const;
+  /// The ranks' layout (one rank without mpirun) and whether this rank writes files and messages.
+  const parallel::Decomposition& decomposition() const { return decomposition_; }
+  bool rootRank() const { return decomposition_.rank() == 0; }
   /// Wall time per phase for this invocation (simulatedSeconds: physical time it advanced), with
   /// the throughput figures the benchmarks quote (s wall per simulated s, ns per particle-step).
   std::string timingTable(double wallSeconds, double simulatedSeconds) const;
@@ -107,10 +111,13 @@ class Simulation {
   coupling::FluidView fluidView();
   void forcesOnParticles(const coupling::FluidView& fluid);  // coupler: fluid forces on the particles
   void initialiseCoupling();
+  /// Under MPI: all ranks wait here (directory creation, file writes by rank 0).
+  void synchroniseRanks() const;
 
   CaseSettings settings_;
   RunOptions options_;
   Domain domain_;
+  parallel::Decomposition decomposition_;
   std::unique_ptr<dem::System> dem_;
   std::unique_ptr<fluid::Solver> fluid_;        // absent for DEM-only cases
   std::unique_ptr<coupling::Coupler> coupler_;  // absent without a 'coupling' section

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace gf {
 
 Domain Domain::read(Params& root) {
@@ -19,6 +21,23 @@ Domain Domain::read(Params& root) {
               {0, 0, 0});
   if (periodic.size() != 3) p.fail("periodic", fmt::format("{} values", periodic.size()), "3 flags [x, y, z]");
   for (int a = 0; a < 3; ++a) d.periodic[a] = periodic[a] != 0.0;
+  // Ranks per axis under mpirun: the word auto, or a list [px, py, pz] whose product is the rank
+  // count (checked when the run starts, where the rank count is known).
+  const Key layoutKey{"decomposition", "-",
+                      "ranks per axis under MPI: auto (least halo surface) or [px, py, pz] with px*py*pz = ranks"};
+  if (p.isSequence("decomposition")) {
+    const std::vector<double> layout = p.reals(layoutKey, {0, 0, 0});
+    if (layout.size() != 3) p.fail("decomposition", fmt::format("{} values", layout.size()), "auto or [px, py, pz]");
+    for (int a = 0; a < 3; ++a) {
+      if (!(layout[a] >= 1.0) || layout[a] != std::floor(layout[a]))
+        p.fail("decomposition", fmt::format("{:g} ranks along {}", layout[a], "xyz"[a]),
+               "auto or three whole numbers >= 1");
+      d.decomposition[a] = static_cast<int>(layout[a]);
+    }
+  } else {
+    const std::string word = p.choice(layoutKey, {"auto"}, "auto");
+    (void)word;
+  }
   return d;
 }
 

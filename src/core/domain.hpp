@@ -11,6 +11,8 @@ struct Domain {
   Vec3 min;
   Vec3 max;
   std::array<bool, 3> periodic{false, false, false};
+  /// Ranks per axis under MPI (domain.decomposition); {0, 0, 0} = auto (least halo surface).
+  std::array<int, 3> decomposition{0, 0, 0};
 
   Vec3 size() const { return max - min; }
   bool contains(const Vec3& p) const {

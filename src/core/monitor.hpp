@@ -14,6 +14,7 @@ namespace gf {
 
 namespace dem {
 class System;
+struct ParticleSet;
 }
 namespace fluid {
 class Solver;
@@ -30,7 +31,18 @@ struct RunState {
   const fluid::Solver* fluid = nullptr;
   const coupling::Coupler* coupling = nullptr;
   Vec3 gravity;            // m/s^2, the case's
+  /// Every particle of the run (under MPI gathered from all ranks on rank 0, whose monitors write
+  /// the files; empty on the other ranks); null: the DEM's own (one rank). Read through
+  /// monitoredParticles().
+  const dem::ParticleSet* particles = nullptr;
 };
+
+/// The particles a monitor that loops over particles reads (RunState::particles, else the DEM's).
+/// (A template, so that this header needs no DEM header: instantiated where dem::System is known.)
+template <class DemSystem = dem::System>
+const dem::ParticleSet& monitoredParticles(const RunState& s) {
+  return s.particles ? *s.particles : static_cast<const DemSystem*>(s.dem)->particles();
+}
 
 struct MonitorColumn {
   std::string name;

@@ -217,6 +217,11 @@ bool Params::has(std::string_view key) const {
   return n != nullptr && !n->IsNull();
 }
 
+bool Params::isSequence(std::string_view key) const {
+  const YAML::Node* n = find(key);
+  return n != nullptr && n->IsSequence();
+}
+
 bool Params::isWord(std::string_view key, std::string_view word) const {
   const YAML::Node* n = find(key);
   return n != nullptr && n->IsScalar() && n->Scalar() == word;

@@ -108,6 +108,8 @@ class Params {
   std::vector<Params> list(const Key& k);
 
   bool has(std::string_view key) const;
+  /// Whether the key is present and a sequence (keys that take either a word or a list).
+  bool isSequence(std::string_view key) const;
   /// Whether the key is present and is the word `word` (keys that take either a number or a word).
   bool isWord(std::string_view key, std::string_view word) const;
   bool documenting() const;

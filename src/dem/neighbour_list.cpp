@@ -121,19 +121,18 @@ int neighbourCells(int c, int dim, bool periodic, int out[3]) {
 
 }  // namespace
 
-std::vector<std::uint32_t> mortonOrder(const std::vector<Vec3>& x, const Vec3& boxMin, const Vec3& boxMax,
-                                       double cellSize) {
-  const std::size_t n = x.size();
-  std::vector<std::uint64_t> key(n);
-  parallelFor(static_cast<std::int64_t>(n), [&](std::int64_t i) {
-    std::uint64_t k = 0;
-    for (int a = 0; a < 3; ++a) {
-      const double q = std::floor((x[i][a] - boxMin[a]) / cellSize);
-      const std::uint64_t c = static_cast<std::uint64_t>(std::clamp(q, 0.0, 2097151.0));
-      k |= spreadBits(c) << a;
-    }
-    key[i] = k;
-  });
+std::uint64_t mortonCode(const Vec3& x, const Vec3& boxMin, double cellSize) {
+  std::uint64_t k = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double q = std::floor((x[a] - boxMin[a]) / cellSize);
+    const std::uint64_t c = static_cast<std::uint64_t>(std::clamp(q, 0.0, 2097151.0));
+    k |= spreadBits(c) << a;
+  }
+  return k;
+}
+
+std::vector<std::uint32_t> orderByKey(const std::vector<std::uint64_t>& key) {
+  const std::size_t n = key.size();
   // Stable LSD radix sort of the indices by key, 8 bits a pass over the bits any key uses (3 x 8
   // bits for up to 256 cells per axis): ties stay in index order, the order a comparison sort by
   // (key, index) gives, in O(n) per pass instead of O(n log n) comparisons.
@@ -152,6 +151,14 @@ std::vector<std::uint32_t> mortonOrder(const std::vector<Vec3>& x, const Vec3& b
     order.swap(next);
   }
   return order;
+}
+
+std::vector<std::uint32_t> mortonOrder(const std::vector<Vec3>& x, const Vec3& boxMin, const Vec3& /*boxMax*/,
+                                       double cellSize) {
+  std::vector<std::uint64_t> key(x.size());
+  parallelFor(static_cast<std::int64_t>(x.size()),
+              [&](std::int64_t i) { key[i] = mortonCode(x[i], boxMin, cellSize); });
+  return orderByKey(key);
 }
 
 namespace {

@@ -148,6 +148,10 @@ struct CellGrid {
   int cellIndex(const Vec3& x, int c[3]) const;
 };
 
+/// Morton (Z-order) code of the cell of cellSize (counted from boxMin) that holds x.
+std::uint64_t mortonCode(const Vec3& x, const Vec3& boxMin, double cellSize);
+/// Indices sorted by key, ties in index order (stable radix sort).
+std::vector<std::uint32_t> orderByKey(const std::vector<std::uint64_t>& key);
 /// Order of particles along a Morton (Z-order) curve of their cells, ties by index.
 std::vector<std::uint32_t> mortonOrder(const std::vector<Vec3>& x, const Vec3& boxMin, const Vec3& boxMax,
                                        double cellSize);

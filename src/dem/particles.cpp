@@ -25,6 +25,8 @@ std::size_t ParticleSet::add(std::int64_t newId, std::int32_t materialType, doub
   angularVelocity.push_back(omega);
   force.push_back({});
   torque.push_back({});
+  orderKey.push_back(kNewParticleKey);
+  if (!ghost.empty()) ghost.push_back(0);
   if (hasExternalForces) {
     externalForce.push_back({});
     externalTorque.push_back({});
@@ -64,6 +66,13 @@ std::size_t ParticleSet::findDoubleColumn(const std::string& name) const { retur
 
 std::size_t ParticleSet::findVec3Column(const std::string& name) const { return findColumn(vec3Columns, name); }
 
+std::size_t ParticleSet::ownedCount() const {
+  if (ghost.empty()) return size();
+  std::size_t n = 0;
+  for (std::uint8_t g : ghost) n += g == 0 ? 1 : 0;
+  return n;
+}
+
 void ParticleSet::enableExternalForces() {
   if (hasExternalForces) return;
   externalForce.assign(size(), Vec3{});
@@ -87,6 +96,7 @@ void ParticleSet::reserve(std::size_t n) {
   angularVelocity.reserve(n);
   force.reserve(n);
   torque.reserve(n);
+  orderKey.reserve(n);
   if (hasExternalForces) {
     externalForce.reserve(n);
     externalTorque.reserve(n);
@@ -115,6 +125,8 @@ void ParticleSet::gather(const std::vector<std::uint32_t>& order) {
   gatherArray(angularVelocity, order);
   gatherArray(force, order);
   gatherArray(torque, order);
+  gatherArray(orderKey, order);
+  if (!ghost.empty()) gatherArray(ghost, order);
   if (hasExternalForces) {
     gatherArray(externalForce, order);
     gatherArray(externalTorque, order);
@@ -135,6 +147,7 @@ void ParticleSet::save(BinaryWriter& out) const {
   out.putVector(torque);
   out.putVector(externalForce);
   out.putVector(externalTorque);
+  out.putVector(orderKey);
 }
 
 void ParticleSet::load(BinaryReader& in) {
@@ -150,9 +163,11 @@ void ParticleSet::load(BinaryReader& in) {
   torque = in.getVector<Vec3>();
   externalForce = in.getVector<Vec3>();
   externalTorque = in.getVector<Vec3>();
+  orderKey = in.getVector<std::uint64_t>();
+  ghost.clear();
   const std::size_t n = id.size();
   if (type.size() != n || radius.size() != n || mass.size() != n || position.size() != n || velocity.size() != n ||
-      angularVelocity.size() != n || force.size() != n || torque.size() != n ||
+      angularVelocity.size() != n || force.size() != n || torque.size() != n || orderKey.size() != n ||
       externalForce.size() != externalTorque.size() || (!externalForce.empty() && externalForce.size() != n))
     throw CheckpointError("checkpoint is corrupt: particle arrays have different lengths");
   // External forces that are all zero (a DEM-only run, or a checkpoint written before they were

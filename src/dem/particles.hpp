@@ -33,6 +33,19 @@ struct ParticleSet {
   /// non-zero external torque sets it (enableExternalForces sets it too); clearExternalTorques()
   /// resets it.
   bool hasExternalTorques = false;
+  /// The particle's place in the order of the arrays: the Morton code of its cell at the last
+  /// reordering (kNewParticleKey for particles added since). The arrays are kept sorted by
+  /// (orderKey, id), a rule every rank applies to the particles it holds, so a contact's partners
+  /// are summed in the same order on any number of ranks.
+  std::vector<std::uint64_t> orderKey;
+  static constexpr std::uint64_t kNewParticleKey = ~std::uint64_t{0};
+  /// Under MPI: 1 for ghosts (copies of other ranks' particles within the contact reach, for the
+  /// force loop only; their owner integrates them), 0 for the particles this rank owns. Empty on
+  /// one rank (no ghosts).
+  std::vector<std::uint8_t> ghost;
+  bool isGhost(std::size_t i) const { return !ghost.empty() && ghost[i] != 0; }
+  /// The particles this rank owns (all on one rank).
+  std::size_t ownedCount() const;
 
   /// Identifies the particles and their order: a fresh value (process-wide counter, never 0)
   /// whenever add, gather or load change them; a copy of the set shares it. Whoever keeps

@@ -13,8 +13,14 @@
 
 namespace gf::dem {
 
-System::System(Params& root, const Domain& domain, const Vec3& gravity, InitialParticles initial)
-    : domain_(domain), box_(domain), gravity_(gravity), table_(root) {
+System::System(Params& root, const Domain& domain, const Vec3& gravity, InitialParticles initial,
+               const parallel::Decomposition& decomposition)
+    : domain_(domain),
+      decomposition_(decomposition),
+      distributed_(decomposition.distributed()),
+      box_(domain),
+      gravity_(gravity),
+      table_(root) {
   readWalls(root);
   InsertionCommon::table() = &table_;
   for (Params& ins : root.list({"insertion", "-", "particle insertion (initial and rate-based)"}))
@@ -33,7 +39,38 @@ System::System(Params& root, const Domain& domain, const Vec3& gravity, InitialP
   // 150,000 spheres: ~0.1 s of the restart).
   if (initial == InitialParticles::FromCheckpoint) return;
   insertAndRemove(0.0);
-  refresh();
+  rebuild(takePendingOrder(), list_.rows());
+  updateInverseInertia();
+  computeForces(0.0, 0.0);
+  checkBoxesHoldTheReach(root);
+}
+
+void System::checkBoxesHoldTheReach(Params& root) const {
+  // Ghosts come from the 26 neighbouring boxes only: a box must be at least as wide as the contact
+  // reach (largest diameter + skin), or a particle two boxes away could touch one of this box.
+  if (!distributed_ || root.documenting()) return;
+  const double width = decomposition_.smallestBoxWidth();
+  if (width >= ghostReach_) return;
+  root.section({"domain"}).fail(
+      "decomposition",
+      fmt::format("boxes of {:.4g} m ({} ranks as {}), narrower than the contact reach {:.4g} m (largest diameter "
+                  "+ skin)",
+                  width, decomposition_.ranks(), decomposition_.describe(), ghostReach_),
+      fmt::format("a layout whose boxes are at least {:.4g} m wide along every split axis (fewer ranks along the "
+                  "narrow axis)",
+                  ghostReach_));
+}
+
+std::vector<std::uint32_t> System::takePendingOrder() {
+  std::vector<std::uint32_t> order;
+  if (hasPendingOrder_) {
+    hasPendingOrder_ = false;
+    order.swap(pendingOrder_);
+    return order;
+  }
+  order.resize(particles_.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+  return order;
 }
 
 void System::readWalls(Params& root) {
@@ -122,30 +159,65 @@ void System::updateWalls() {
 }
 
 bool System::insertAndRemove(double dt) {
-  bool changed = false;
-  InsertionContext ctx{particles_, nextId_, domain_};
-  for (auto& ins : inserters_) changed |= ins->insert(ctx, time_, dt) > 0;
-  if (outlets_.empty()) return changed;
-  // Outlets: remove particles whose centre is inside a deletion box.
-  std::vector<std::uint32_t> keep;
-  keep.reserve(particles_.size());
-  bool removed = false;
-  for (std::size_t i = 0; i < particles_.size(); ++i) {
-    bool inside = false;
-    for (Outlet& o : outlets_)
-      if (o.contains(particles_.position[i])) {
-        o.removedMass += particles_.mass[i];
-        ++o.removedCount;
-        inside = true;
-        break;
+  ParticleSet& p = particles_;
+  const std::size_t before = p.size();
+  // Existing particles for the inserters' overlap checks: the set's own on one rank; under MPI
+  // those every rank owns, plus the ones inserted earlier in this call (the same on every rank).
+  auto addExisting = [&](const std::function<bool(const Vec3&)>& near, OverlapGrid& grid) {
+    if (!distributed_) {
+      for (std::size_t i = 0; i < p.size(); ++i)
+        if (near(p.position[i])) grid.add(p.position[i], p.radius[i]);
+      return;
+    }
+    parallel::Bytes mine;
+    parallel::Packer out(mine);
+    for (std::size_t i = 0; i < before; ++i)
+      if (!p.isGhost(i) && near(p.position[i])) {
+        out.put(p.position[i]);
+        out.put(p.radius[i]);
       }
+    for (const parallel::Bytes& bytes : parallel::allgather(mine)) {
+      parallel::Unpacker in(bytes);
+      while (!in.done()) {
+        const Vec3 x = in.get<Vec3>();
+        grid.add(x, in.get<double>());
+      }
+    }
+    for (std::size_t i = before; i < p.size(); ++i)
+      if (near(p.position[i])) grid.add(p.position[i], p.radius[i]);
+  };
+  InsertionContext ctx{p, nextId_, domain_, addExisting};
+  bool changed = false;
+  for (auto& ins : inserters_) changed |= ins->insert(ctx, time_, dt) > 0;
+  if (distributed_ && p.ghost.size() != p.size()) p.ghost.resize(p.size(), 0);
+  // Every rank inserted the same particles; under MPI each keeps those in its box. Outlets remove
+  // the particles whose centre is inside a deletion box (each rank its own).
+  std::vector<std::uint32_t> keep;
+  bool removed = false;
+  keep.reserve(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (distributed_ && i >= before && decomposition_.ownerOf(p.position[i]) != decomposition_.rank()) {
+      removed = true;  // another rank's new particle
+      continue;
+    }
+    bool inside = false;
+    if (!p.isGhost(i))
+      for (Outlet& o : outlets_)
+        if (o.contains(p.position[i])) {
+          o.removedMass += p.mass[i];
+          ++o.removedCount;
+          inside = true;
+          break;
+        }
     if (inside) removed = true;
     else keep.push_back(static_cast<std::uint32_t>(i));
   }
+  pendingOrder_.clear();
+  hasPendingOrder_ = removed;
   if (removed) {
-    // Removal is applied in rebuild(); here only the order without the removed particles.
-    rebuild(std::move(keep), list_.rows());
-    return false;
+    // Applied by the rebuild that follows (removal, like insertion, makes one).
+    pendingOrder_ = std::move(keep);
+    return true;
   }
   return changed;
 }
@@ -174,32 +246,81 @@ bool System::needsRebuild(double largestMove, double secondLargestMove) const {
 
 void System::rebuild(std::vector<std::uint32_t> order, std::size_t listedRows) {
   ScopedPhase timer(timers_, Phase::NeighbourSearch);
+  ParticleSet& p = particles_;
+  if (distributed_ && p.ghost.size() != p.size()) p.ghost.resize(p.size(), 0);
   double maxDiameter = 0.0;
-  for (double r : particles_.radius) maxDiameter = std::max(maxDiameter, 2.0 * r);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (!p.isGhost(i)) maxDiameter = std::max(maxDiameter, 2.0 * p.radius[i]);
+  if (distributed_) maxDiameter = parallel::maxOverRanks(maxDiameter);
   skin_ = neighbour_.skin > 0.0 ? neighbour_.skin : 0.1 * maxDiameter;
-  // Periodic Morton reordering for cache locality (applied on top of removals).
-  if (neighbour_.reorderInterval > 0 && rebuilds_ % neighbour_.reorderInterval == 0 && !order.empty()) {
-    std::vector<Vec3> x(order.size());
-    for (std::size_t k = 0; k < order.size(); ++k) x[k] = particles_.position[order[k]];
-    const std::vector<std::uint32_t> morton = mortonOrder(x, domain_.min, domain_.max, maxDiameter + skin_);
-    std::vector<std::uint32_t> combined(order.size());
-    for (std::size_t k = 0; k < order.size(); ++k) combined[k] = order[morton[k]];
-    order.swap(combined);
+  // Periodic Morton reordering for cache locality: the particles get the code of their cell as
+  // their order key, and the arrays follow (orderKey, id) (ParticleSet::orderKey).
+  const bool reorder = neighbour_.reorderInterval > 0 && rebuilds_ % neighbour_.reorderInterval == 0;
+  const double mortonCell = maxDiameter + skin_;
+  std::vector<std::int64_t> previous;
+  bool identity = false;
+  if (distributed_) {
+    migrateAndExchangeGhosts(order, reorder, mortonCell, maxDiameter + skin_, previous, listedRows);
+  } else {
+    orderLocally(order, reorder, mortonCell, previous, listedRows);
+    identity = order.size() == p.size();
+    for (std::size_t k = 0; identity && k < order.size(); ++k) identity = order[k] == k;
   }
-  bool identity = order.size() == particles_.size();
-  for (std::size_t k = 0; identity && k < order.size(); ++k) identity = order[k] == k;
-  if (!identity) particles_.gather(order);
-  std::vector<std::int64_t> previous(order.size());
-  for (std::size_t k = 0; k < order.size(); ++k) previous[k] = order[k] < listedRows ? order[k] : -1;
   const bool rollingHistory = table_.rollingLaw() == RollingLaw::Epsd;
-  list_.build(particles_, box_, domain_.min, domain_.max, skin_, previous, rollingHistory);
-  wallList_.build(particles_, primitives_, skin_, previous, rollingHistory);
-  positionAtBuild_ = particles_.position;
+  list_.build(p, box_, domain_.min, domain_.max, skin_, previous, rollingHistory);
+  wallList_.build(p, primitives_, skin_, previous, rollingHistory);
+  if (distributed_) setHistoriesFromRecords(arrivedPairs_, arrivedWalls_, arrived_);
+  positionAtBuild_ = p.position;
   timeAtBuild_ = time_;
   ++rebuilds_;
   // 1/m and 1/I follow the particles; unchanged when none moved in the arrays, none came or went
   // (refresh() recomputes them in any case: its caller may have edited masses)
-  if (!identity || inverseMass_.size() != particles_.size()) updateInverseInertia();
+  if (!identity || inverseMass_.size() != p.size()) updateInverseInertia();
+}
+
+namespace {
+/// Order of `subset` (indices into the arrays) by (orderKey, id).
+void sortByKeyThenId(std::vector<std::uint32_t>& subset, const ParticleSet& p) {
+  auto before = [&](std::uint32_t a, std::uint32_t b) {
+    return p.orderKey[a] != p.orderKey[b] ? p.orderKey[a] < p.orderKey[b] : p.id[a] < p.id[b];
+  };
+  if (std::is_sorted(subset.begin(), subset.end(), before)) return;
+  // Radix sort by key (stable), then each run of equal keys by id.
+  std::vector<std::uint64_t> keys(subset.size());
+  for (std::size_t k = 0; k < subset.size(); ++k) keys[k] = p.orderKey[subset[k]];
+  const std::vector<std::uint32_t> byKey = orderByKey(keys);
+  std::vector<std::uint32_t> sorted(subset.size());
+  for (std::size_t k = 0; k < subset.size(); ++k) sorted[k] = subset[byKey[k]];
+  for (std::size_t a = 0; a < sorted.size();) {
+    std::size_t b = a + 1;
+    while (b < sorted.size() && p.orderKey[sorted[b]] == p.orderKey[sorted[a]]) ++b;
+    if (b - a > 1)
+      std::sort(sorted.begin() + static_cast<std::ptrdiff_t>(a), sorted.begin() + static_cast<std::ptrdiff_t>(b),
+                [&](std::uint32_t x, std::uint32_t y) { return p.id[x] < p.id[y]; });
+    a = b;
+  }
+  subset.swap(sorted);
+}
+}  // namespace
+
+void System::assignMortonKeys(const std::vector<std::uint32_t>& subset, double mortonCell) {
+  ParticleSet& p = particles_;
+  parallelFor(static_cast<std::int64_t>(subset.size()), [&](std::int64_t k) {
+    const std::uint32_t i = subset[k];
+    p.orderKey[i] = mortonCode(p.position[i], domain_.min, mortonCell);
+  });
+}
+
+void System::orderLocally(std::vector<std::uint32_t>& order, bool reorder, double mortonCell,
+                          std::vector<std::int64_t>& previous, std::size_t listedRows) {
+  ParticleSet& p = particles_;
+  if (reorder && !order.empty()) assignMortonKeys(order, mortonCell);
+  sortByKeyThenId(order, p);
+  bool identity = order.size() == p.size();
+  for (std::size_t k = 0; identity && k < order.size(); ++k) identity = order[k] == k;
+  if (!identity) p.gather(order);
+  previous.resize(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) previous[k] = order[k] < listedRows ? order[k] : -1;
 }
 
 const std::vector<std::size_t>& System::threadBlocks() {
@@ -382,12 +503,17 @@ void System::step(double dt) {
   time_ += dt;
   updateWalls();
   const std::size_t before = p.size();
-  const bool inserted = insertAndRemove(dt);
-  if (inserted || needsRebuild(std::sqrt(displacement2.first), std::sqrt(displacement2.second))) {
-    std::vector<std::uint32_t> order(p.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
-    rebuild(std::move(order), std::min(before, list_.rows()));
+  bool rebuildNow = insertAndRemove(dt);
+  if (distributed_) {
+    // One vote for all ranks (the same rebuild steps as on one rank): the displacements of the
+    // particles every rank owns, and whether any rank's particles came or went.
+    const auto [largest, second] = ownedLargestMoves();
+    rebuildNow = parallel::anyOverRanks(rebuildNow || needsRebuild(largest, second));
+  } else {
+    rebuildNow = rebuildNow || needsRebuild(std::sqrt(displacement2.first), std::sqrt(displacement2.second));
   }
+  if (rebuildNow) rebuild(takePendingOrder(), std::min(before, list_.rows()));
+  else if (distributed_) forwardGhosts();
   computeForces(dt, 0.5 * dt);  // and the closing half kick
   ++steps_;
 }
@@ -416,6 +542,7 @@ void System::checkHealth(long long step, double time) const {
   const ParticleSet& p = particles_;
   enum Problem : int { None, NotFinite, Outside };
   auto problemOf = [&](std::size_t i) {
+    if (p.isGhost(i)) return None;  // (its owner checks it)
     if (!isFinite(p.position[i]) || !isFinite(p.velocity[i]) || !isFinite(p.angularVelocity[i])) return NotFinite;
     for (int a = 0; a < 3; ++a)
       if (!domain_.periodic[a] && (p.position[i][a] < domain_.min[a] || p.position[i][a] > domain_.max[a])) return Outside;
@@ -433,33 +560,66 @@ void System::checkHealth(long long step, double time) const {
     for (std::int64_t i = 0; i < n; ++i)
       if (i < first && problemOf(static_cast<std::size_t>(i)) != None) first = i;
   }
-  if (first == n) return;
-  const auto i = static_cast<std::size_t>(first);
-  if (problemOf(i) == NotFinite)
-    throw DivergenceError(step, time, "particle position/velocity is NaN or Inf", fmt::format("particle id {}", p.id[i]),
-                          p.position[i], "reduce the time step");
-  throw DivergenceError(step, time, "particle left the domain", fmt::format("particle id {}", p.id[i]), p.position[i],
+  // Under MPI every rank learns whether any rank found one, and all report the one of the lowest
+  // rank, so that every rank stops with the same message.
+  int problem = first == n ? None : problemOf(static_cast<std::size_t>(first));
+  std::int64_t id = problem ? p.id[static_cast<std::size_t>(first)] : 0;
+  Vec3 where = problem ? p.position[static_cast<std::size_t>(first)] : Vec3{};
+  std::string rankText;
+  if (distributed_) {
+    if (!parallel::anyOverRanks(problem != None)) return;
+    parallel::Bytes mine;
+    parallel::Packer out(mine);
+    out.put(problem);
+    out.put(id);
+    out.put(where);
+    const std::vector<parallel::Bytes> all = parallel::allgather(mine);
+    for (std::size_t r = 0; r < all.size(); ++r) {
+      parallel::Unpacker in(all[r]);
+      problem = in.get<int>();
+      id = in.get<std::int64_t>();
+      where = in.get<Vec3>();
+      if (problem != None) {
+        rankText = fmt::format(" on rank {}", r);
+        break;
+      }
+    }
+  }
+  if (problem == None) return;
+  if (problem == NotFinite)
+    throw DivergenceError(step, time, "particle position/velocity is NaN or Inf",
+                          fmt::format("particle id {}{}", id, rankText), where, "reduce the time step");
+  throw DivergenceError(step, time, "particle left the domain", fmt::format("particle id {}{}", id, rankText), where,
                         "no wall or outlet holds it; check walls, outlets and the time step");
 }
 
 std::vector<WallLoad> System::wallLoads() const {
   std::vector<WallLoad> loads(wallNames_.size());
   for (std::size_t w = 0; w < loads.size(); ++w) loads[w].name = wallNames_[w];
-  // Serial sum in entry order: deterministic.
+  // Serial sum in entry order: deterministic (under MPI each rank its own particles, then a sum
+  // over ranks).
   for (std::size_t k = 0; k < wallList_.entries(); ++k) {
     const Vec3& f = wallList_.force[k];
-    if (f == Vec3{}) continue;
+    if (f == Vec3{} || particles_.isGhost(wallList_.particle[k])) continue;
     const int w = primitives_[wallList_.primitive[k]].wall;
     loads[w].force -= f;
     loads[w].torque -= cross(wallList_.point[k] - wallCentre_[w], f);
   }
+  if (distributed_)
+    for (WallLoad& l : loads)
+      for (int a = 0; a < 3; ++a) {
+        l.force[a] = parallel::sumOverRanks(l.force[a]);
+        l.torque[a] = parallel::sumOverRanks(l.torque[a]);
+      }
   return loads;
 }
 
 ContactStatistics System::contactStatistics() const {
   ContactStatistics s;
   const ParticleSet& p = particles_;
+  // (each pair once over all ranks: by the owner of its row)
   for (std::size_t i = 0; i < list_.rows() && i < p.size(); ++i) {
+    if (p.isGhost(i)) continue;
     for (std::uint32_t k = list_.rowStart[i]; k < list_.rowStart[i + 1]; ++k) {
       const std::uint32_t j = list_.partner[k];
       const double overlap = p.radius[i] + p.radius[j] - norm(box_.minimumImage(p.position[i] - p.position[j]));
@@ -477,7 +637,13 @@ ContactStatistics System::contactStatistics() const {
       s.maxOverlapRatio = std::max(s.maxOverlapRatio, overlap / p.radius[i]);
     }
   }
-  s.coordinationNumber = p.size() ? 2.0 * static_cast<double>(s.particleContacts) / static_cast<double>(p.size()) : 0.0;
+  if (distributed_) {
+    s.particleContacts = parallel::sumOverRanks(s.particleContacts);
+    s.wallContacts = parallel::sumOverRanks(s.wallContacts);
+    s.maxOverlapRatio = parallel::maxOverRanks(s.maxOverlapRatio);
+  }
+  const long long count = globalParticleCount();
+  s.coordinationNumber = count ? 2.0 * static_cast<double>(s.particleContacts) / static_cast<double>(count) : 0.0;
   return s;
 }
 
@@ -485,6 +651,7 @@ EnergyBalance System::energy() const {
   EnergyBalance e;
   const ParticleSet& p = particles_;
   for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.isGhost(i)) continue;
     e.translational += 0.5 * p.mass[i] * normSquared(p.velocity[i]);
     e.rotational += 0.5 * p.inertia(i) * normSquared(p.angularVelocity[i]);
     e.gravitational -= p.mass[i] * dot(gravity_, p.position[i]);
@@ -495,6 +662,7 @@ EnergyBalance System::energy() const {
     return 0.4 * hertz::stiffnessPrefactor(c.effectiveYoungs, effectiveRadius) * overlap * overlap * std::sqrt(overlap);
   };
   for (std::size_t i = 0; i < list_.rows() && i < p.size(); ++i) {
+    if (p.isGhost(i)) continue;
     for (std::uint32_t k = list_.rowStart[i]; k < list_.rowStart[i + 1]; ++k) {
       const std::uint32_t j = list_.partner[k];
       const double overlap = p.radius[i] + p.radius[j] - norm(box_.minimumImage(p.position[i] - p.position[j]));
@@ -508,6 +676,12 @@ EnergyBalance System::energy() const {
       const double overlap = w.active && carries ? p.radius[i] - distanceToPrimitive(w, p.position[i]).distance : 0.0;
       if (overlap > 0.0) e.elastic += stored(table_.pair(p.type[i], wallMaterial_[w.wall]), p.radius[i], overlap);
     }
+  }
+  if (distributed_) {
+    e.translational = parallel::sumOverRanks(e.translational);
+    e.rotational = parallel::sumOverRanks(e.rotational);
+    e.gravitational = parallel::sumOverRanks(e.gravitational);
+    e.elastic = parallel::sumOverRanks(e.elastic);
   }
   return e;
 }
@@ -530,47 +704,6 @@ std::size_t System::memoryBytes() const {
   for (const auto& r : buffers_.received) bytes += r.capacity() * sizeof(std::uint32_t);
   bytes += (inverseMass_.capacity() + inverseMoment_.capacity()) * sizeof(double);
   return bytes;
-}
-
-void System::save(BinaryWriter& out) const {
-  out.put(time_);
-  out.put(steps_);
-  out.put(nextId_);
-  out.put(rebuilds_);
-  out.put(timeAtBuild_);
-  out.put(skin_);
-  particles_.save(out);
-  list_.save(out);
-  wallList_.save(out);
-  out.putVector(positionAtBuild_);
-  for (const auto& ins : inserters_) ins->save(out);
-  for (const Outlet& o : outlets_) {
-    out.put(o.removedMass);
-    out.put(o.removedCount);
-  }
-}
-
-void System::load(BinaryReader& in) {
-  time_ = in.get<double>();
-  steps_ = in.get<long long>();
-  nextId_ = in.get<std::int64_t>();
-  rebuilds_ = in.get<long long>();
-  timeAtBuild_ = in.get<double>();
-  skin_ = in.get<double>();
-  particles_.load(in);
-  list_.load(in);
-  wallList_.load(in);
-  positionAtBuild_ = in.getVector<Vec3>();
-  list_.countTouching(positionAtBuild_, particles_.radius, box_);
-  updateInverseInertia();
-  if (list_.rows() != particles_.size() || positionAtBuild_.size() != particles_.size())
-    throw CheckpointError("checkpoint is corrupt: DEM lists do not match the particles");
-  for (auto& ins : inserters_) ins->load(in);
-  for (Outlet& o : outlets_) {
-    o.removedMass = in.get<double>();
-    o.removedCount = in.get<long long>();
-  }
-  updateWalls();
 }
 
 }  // namespace gf::dem

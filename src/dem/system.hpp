@@ -28,6 +28,8 @@
 #include "dem/time_step_check.hpp"
 #include "dem/wall_contact_list.hpp"
 #include "dem/walls/wall.hpp"
+#include "parallel/decomposition.hpp"
+#include "parallel/exchange.hpp"
 
 namespace gf::dem {
 
@@ -55,12 +57,31 @@ struct EnergyBalance {
 /// restart (load() then brings the particles, lists and inserter states of the checkpoint).
 enum class InitialParticles { Insert, FromCheckpoint };
 
+/// Contact history of one particle pair, by particle ids, in the view of particle `a` (the pair's
+/// row owner when recorded): what travels with a migrating particle and what a checkpoint holds.
+struct PairHistoryRecord {
+  std::int64_t a = 0, b = 0;
+  Vec3 tangential, rolling;
+};
+/// Contact history and last force of one particle-wall entry, by particle id and primitive.
+struct WallHistoryRecord {
+  std::int64_t id = 0;
+  std::uint32_t primitive = 0;
+  std::uint32_t padding = 0;  // (written to checkpoints: no uninitialised bytes)
+  Vec3 tangential, rolling, force, point;
+};
+
 class System {
  public:
+  /// `decomposition`: under MPI, the rank's box; this rank then owns the particles whose centre
+  /// lies in it and keeps ghost copies of its neighbours' particles within contact reach.
   System(Params& root, const Domain& domain, const Vec3& gravity,
-         InitialParticles initial = InitialParticles::Insert);
+         InitialParticles initial = InitialParticles::Insert,
+         const parallel::Decomposition& decomposition = parallel::Decomposition());
 
   void step(double dt);
+  /// Throws DivergenceError on NaN/Inf or a particle leaving the domain (collective under MPI:
+  /// every rank throws the same error, naming the rank that found it).
   void checkHealth(long long step, double time) const;
   /// dt against the Rayleigh time of the smallest/softest particle present or insertable.
   TimeStepStatus checkTimeStep(double dt) const;
@@ -108,20 +129,67 @@ class System {
   ContactStatistics contactStatistics() const;
   EnergyBalance energy() const;
   std::size_t memoryBytes() const;
+  /// Whether the particles are split among MPI ranks (ghosts present, sums reduced over ranks).
+  bool distributed() const { return distributed_; }
+  const parallel::Decomposition& decomposition() const { return decomposition_; }
+  /// Particles owned by all ranks together (collective under MPI).
+  long long globalParticleCount() const;
+  /// The particles of every rank, sorted by id, on rank 0 (empty elsewhere; this rank's own
+  /// particles on one rank): what output and particle monitors read under MPI. Collective.
+  ParticleSet gatherParticles() const;
 
+  /// Complete state in a layout independent of the rank count: particles by id and order key,
+  /// contact histories by particle ids. Collective under MPI; only rank 0's writer holds the data.
   void save(BinaryWriter& out) const;
+  /// Restores save()'s state on any number of ranks (every rank reads the whole state).
   void load(BinaryReader& in);
 
  private:
   void readWalls(Params& root);
+  /// Under MPI: refuses (domain.decomposition) boxes narrower than the ghosts' reach.
+  void checkBoxesHoldTheReach(Params& root) const;
   void updateWalls();
   bool insertAndRemove(double dt);
   bool needsRebuild(double largestMove, double secondLargestMove) const;
   void rebuild(std::vector<std::uint32_t> order, std::size_t listedRows);
   void computeForces(double dt, double halfKick);
   void updateInverseInertia();
+  /// The order of the next rebuild: the particles insertAndRemove() kept, or all of them.
+  std::vector<std::uint32_t> takePendingOrder();
+  /// orderKey = Morton code of the cell of each particle of `subset`.
+  void assignMortonKeys(const std::vector<std::uint32_t>& subset, double mortonCell);
+  // Single-rank and MPI parts of a rebuild: the order of the arrays and, per new index, the index
+  // the particle had before (-1: new here).
+  void orderLocally(std::vector<std::uint32_t>& order, bool reorder, double mortonCell,
+                    std::vector<std::int64_t>& previous, std::size_t listedRows);
+  void migrateAndExchangeGhosts(const std::vector<std::uint32_t>& order, bool reorder, double mortonCell,
+                                double ghostReach, std::vector<std::int64_t>& previous, std::size_t listedRows);
+  /// Ghost copies of this rank's particles within `reach` of each neighbour's box, appended after
+  /// an exchange; the arrays are then sorted by (orderKey, id). Returns the permutation applied.
+  std::vector<std::uint32_t> exchangeGhosts(double reach);
+  /// Positions and velocities of the ghosts from their owners (every step without a rebuild).
+  void forwardGhosts();
+  void setHistoriesFromRecords(const std::vector<PairHistoryRecord>& pairs, const std::vector<WallHistoryRecord>& walls,
+                               const std::vector<std::uint8_t>& rowsToSet);
+  std::vector<PairHistoryRecord> pairRecords(const std::vector<std::uint8_t>& ofParticle) const;
+  std::vector<WallHistoryRecord> wallRecords(const std::vector<std::uint8_t>& ofParticle) const;
+  /// Largest two displacements since the last build of the particles this rank owns, over all ranks.
+  std::pair<double, double> ownedLargestMoves() const;
 
   Domain domain_;
+  parallel::Decomposition decomposition_;
+  bool distributed_ = false;
+  // Ghost bookkeeping (MPI): per neighbour rank (decomposition_.neighbourRanks()), the indices of
+  // the owned particles sent to it as ghosts and of the ghosts received from it, in message order.
+  std::vector<std::vector<std::uint32_t>> ghostSend_, ghostReceive_;
+  double ghostReach_ = 0.0;
+  // Particles that arrived at the last migration (per index, 1 = arrived) and the contact
+  // histories they brought: set on their list entries after the build.
+  std::vector<std::uint8_t> arrived_;
+  std::vector<PairHistoryRecord> arrivedPairs_;
+  std::vector<WallHistoryRecord> arrivedWalls_;
+  std::vector<std::uint32_t> pendingOrder_;  // set by insertAndRemove() when particles went
+  bool hasPendingOrder_ = false;
   PeriodicBox box_;
   Vec3 gravity_;
   ParticleSet particles_;

@@ -49,6 +49,11 @@ Environment::~Environment() {
   if (ownsMpi_ && !finalized) MPI_Finalize();
 }
 
+void Environment::abortAll(int exitCode) const {
+  MPI_Abort(MPI_COMM_WORLD, exitCode);
+  std::exit(exitCode);  // (MPI_Abort does not return)
+}
+
 double Environment::sum(double local) const {
   if (size_ == 1) return local;
   double global = 0.0;

@@ -39,6 +39,9 @@ class Environment {
   /// reverse order of registration.
   void atFinalize(std::function<void()> fn) { finalizers_.push_back(std::move(fn)); }
 
+  /// Stops every rank of the run with this exit code (MPI_Abort): for an error that struck one
+  /// rank while the others may wait for it.
+  [[noreturn]] void abortAll(int exitCode) const;
   /// Sum of a value over all ranks (the value itself on one rank).
   double sum(double local) const;
 

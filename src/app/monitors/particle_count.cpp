@@ -12,7 +12,7 @@ class ParticleCountMonitor final : public Monitor {
   explicit ParticleCountMonitor(Params&) {}
   std::vector<MonitorColumn> columns() const override { return {{"particles", "-"}, {"particle_mass", "kg"}}; }
   std::vector<double> sample(const RunState& state) override {
-    const auto& p = state.dem->particles();
+    const auto& p = monitoredParticles(state);
     return {static_cast<double>(p.size()), std::accumulate(p.mass.begin(), p.mass.end(), 0.0)};
   }
 };

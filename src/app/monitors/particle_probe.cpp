@@ -22,7 +22,7 @@ class ParticleProbeMonitor final : public Monitor {
   }
 
   std::vector<double> sample(const RunState& state) override {
-    const auto& p = state.dem->particles();
+    const auto& p = monitoredParticles(state);
     if (index_ >= p.size() || p.id[index_] != id_) {  // find it again after insertion/removal/reordering
       index_ = p.size();
       for (std::size_t i = 0; i < p.size(); ++i)

@@ -31,7 +31,7 @@ class ParticleStatisticsMonitor final : public Monitor {
   }
 
   std::vector<double> sample(const RunState& state) override {
-    const auto& p = state.dem->particles();
+    const auto& p = monitoredParticles(state);
     const std::size_t n = p.size();
     if (n == 0) {
       const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -3,6 +3,7 @@
 // insert() is called once at start-up (time 0, dt 0) and then every step; one-shot methods
 // insert at the first call, rate-based ones over their time window.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <unordered_map>
 #include <vector>
@@ -18,10 +19,17 @@
 
 namespace gf::dem {
 
+class OverlapGrid;
+
 struct InsertionContext {
-  ParticleSet& particles;
+  ParticleSet& particles;  // new particles are appended here
   std::int64_t& nextId;
   const Domain& domain;
+  /// Adds to `grid` the particles already in the run whose centre satisfies `near`, so that new
+  /// ones are placed without overlap. On one rank these are the set's own particles; under MPI the
+  /// particles every rank owns (a collective call: the inserters' states are the same on every
+  /// rank, so every rank asks at the same moment).
+  std::function<void(const std::function<bool(const Vec3&)>& near, OverlapGrid& grid)> addExisting;
 };
 
 /// The smallest sphere an insertion can make (material index and diameter, m): the DEM step is

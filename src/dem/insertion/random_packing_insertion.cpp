@@ -42,7 +42,7 @@ class RandomPackingInsertion final : public Inserter {
     done_ = true;
     const double dMax = common_.size->maxDiameter();
     OverlapGrid grid(dMax);
-    for (std::size_t i = 0; i < ctx.particles.size(); ++i) grid.add(ctx.particles.position[i], ctx.particles.radius[i]);
+    ctx.addExisting([](const Vec3&) { return true; }, grid);
     // Draw the diameters first (largest placed first), then place them.
     const double regionVolume = (max_.x - min_.x) * (max_.y - min_.y) * (max_.z - min_.z);
     std::vector<double> diameters;

@@ -34,9 +34,7 @@ class RateInsertion final : public Inserter {
       const double m = common_.density * 4.0 / 3.0 * 3.141592653589793 * r * r * r;
       if (pendingMass_ < m) break;
       if (!grid) {  // particles near the face only
-        for (std::size_t i = 0; i < ctx.particles.size(); ++i)
-          if (std::abs(dot(ctx.particles.position[i] - corner_, n)) < 3.0 * rMax)
-            local.add(ctx.particles.position[i], ctx.particles.radius[i]);
+        ctx.addExisting([&](const Vec3& x) { return std::abs(dot(x - corner_, n)) < 3.0 * rMax; }, local);
         grid = &local;
       }
       bool placed = false;

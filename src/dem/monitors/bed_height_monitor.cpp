@@ -15,8 +15,8 @@ class BedHeightMonitor final : public Monitor {
   }
   std::vector<MonitorColumn> columns() const override { return {{"bed_height", "m"}, {"mean_centre_height", "m"}}; }
   std::vector<double> sample(const RunState& s) override {
-    if (!s.dem || s.dem->particles().size() == 0) return {0, 0};
-    const ParticleSet& p = s.dem->particles();
+    if (!s.dem || monitoredParticles(s).size() == 0) return {0, 0};
+    const ParticleSet& p = monitoredParticles(s);
     double top = -std::numeric_limits<double>::infinity(), sum = 0.0;
     for (std::size_t i = 0; i < p.size(); ++i) {
       const double h = dot(p.position[i] - base_, up_);

@@ -31,8 +31,8 @@ class HeapAngleMonitor final : public Monitor {
     return {{"heap_height", "m"}, {"base_radius", "m"}, {"repose_angle", "deg"}};
   }
   std::vector<double> sample(const RunState& s) override {
-    if (!s.dem || s.dem->particles().size() == 0) return {0, 0, 0};
-    const ParticleSet& p = s.dem->particles();
+    if (!s.dem || monitoredParticles(s).size() == 0) return {0, 0, 0};
+    const ParticleSet& p = monitoredParticles(s);
     std::vector<double> radial(p.size());
     double top = 0.0;
     for (std::size_t i = 0; i < p.size(); ++i) {

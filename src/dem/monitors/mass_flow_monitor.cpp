@@ -21,7 +21,7 @@ class MassFlowMonitor final : public Monitor {
   std::vector<MonitorColumn> columns() const override { return {{"mass_crossed", "kg"}, {"mass_flow_rate", "kg/s"}}; }
   std::vector<double> sample(const RunState& s) override {
     if (!s.dem) return {0, 0};
-    const ParticleSet& p = s.dem->particles();
+    const ParticleSet& p = monitoredParticles(s);
     double crossed = 0.0;
     std::unordered_map<std::int64_t, bool> side;
     side.reserve(p.size());

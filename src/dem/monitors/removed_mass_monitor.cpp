@@ -1,6 +1,7 @@
 // Mass and number of particles removed by the outlets (deletion regions).
 #include "core/monitor.hpp"
 #include "dem/system.hpp"
+#include "parallel/exchange.hpp"
 
 namespace gf::dem {
 namespace {
@@ -15,6 +16,10 @@ class RemovedMassMonitor final : public Monitor {
         mass += o.removedMass;
         count += double(o.removedCount);
       }
+    if (s.dem && s.dem->distributed()) {  // (each rank counts what its outlets removed)
+      mass = parallel::sumOverRanks(mass);
+      count = parallel::sumOverRanks(count);
+    }
     return {mass, count};
   }
 };

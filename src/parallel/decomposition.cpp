@@ -1,0 +1,177 @@
+#include "parallel/decomposition.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace gf::parallel {
+
+Decomposition::Decomposition(const Domain& domain, Layout layout, int ranks, int rank, std::array<int, 3> cells)
+    : domain_(domain), rank_(rank) {
+  if (layout == Layout{0, 0, 0}) layout = autoLayout(domain, ranks, cells);
+  for (int a = 0; a < 3; ++a)
+    if (layout[a] < 1) throw std::invalid_argument(fmt::format("decomposition [{}, {}, {}]: every entry must be >= 1",
+                                                               layout[0], layout[1], layout[2]));
+  if (layout[0] * layout[1] * layout[2] != ranks)
+    throw std::invalid_argument(fmt::format("decomposition [{}, {}, {}] makes {} boxes for {} ranks", layout[0],
+                                            layout[1], layout[2], layout[0] * layout[1] * layout[2], ranks));
+  layout_ = layout;
+  const bool grid = cells[0] > 0 && cells[1] > 0 && cells[2] > 0;
+  for (int a = 0; a < 3; ++a) {
+    const int p = layout[a];
+    cut_[a].resize(static_cast<std::size_t>(p) + 1);
+    if (grid) {
+      if (p > cells[a])
+        throw std::invalid_argument(fmt::format("decomposition: {} ranks along {} but only {} cells", p, "xyz"[a],
+                                                cells[a]));
+      cellCut_[a].resize(static_cast<std::size_t>(p) + 1);
+      const double h = (domain.max[a] - domain.min[a]) / cells[a];
+      for (int k = 0; k <= p; ++k) {
+        // Cells as evenly as possible: the first (cells % p) boxes get one cell more.
+        const int base = cells[a] / p, extra = cells[a] % p;
+        const int c = k * base + std::min(k, extra);
+        cellCut_[a][static_cast<std::size_t>(k)] = c;
+        cut_[a][static_cast<std::size_t>(k)] = k == p ? domain.max[a] : domain.min[a] + c * h;
+      }
+    } else {
+      for (int k = 0; k <= p; ++k)
+        cut_[a][static_cast<std::size_t>(k)] =
+            k == p ? domain.max[a] : domain.min[a] + (domain.max[a] - domain.min[a]) * k / p;
+    }
+  }
+  coords_ = coordsOf(rank);
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int r = rankAt({coords_[0] + dx, coords_[1] + dy, coords_[2] + dz});
+        if (r >= 0 && r != rank_) neighbours_.push_back(r);
+      }
+  std::sort(neighbours_.begin(), neighbours_.end());
+  neighbours_.erase(std::unique(neighbours_.begin(), neighbours_.end()), neighbours_.end());
+}
+
+Layout Decomposition::autoLayout(const Domain& domain, int ranks, std::array<int, 3> cells) {
+  const Vec3 size = domain.size();
+  const bool grid = cells[0] > 0 && cells[1] > 0 && cells[2] > 0;
+  Layout best{0, 0, 0};
+  double bestArea = std::numeric_limits<double>::infinity();
+  for (int px = 1; px <= ranks; ++px) {
+    if (ranks % px) continue;
+    for (int py = 1; py <= ranks / px; ++py) {
+      if ((ranks / px) % py) continue;
+      const int pz = ranks / px / py;
+      const Layout l{px, py, pz};
+      bool fits = true;
+      double area = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        if (grid && l[a] > cells[a]) fits = false;
+        const double face = size[(a + 1) % 3] * size[(a + 2) % 3];
+        const int cuts = domain.periodic[a] ? (l[a] > 1 ? l[a] : 0) : l[a] - 1;
+        area += cuts * face;
+      }
+      // Ties: the layout that cuts the later axes (z, then y) first, found first in this order
+      // reversed; any fixed rule keeps the choice the same on every rank.
+      if (fits && area < bestArea * (1.0 - 1e-12)) {
+        bestArea = area;
+        best = l;
+      }
+    }
+  }
+  if (best[0] == 0)
+    throw std::invalid_argument(fmt::format("no decomposition of {} ranks fits the grid of {} x {} x {} cells", ranks,
+                                            cells[0], cells[1], cells[2]));
+  return best;
+}
+
+int Decomposition::rankAt(std::array<int, 3> c) const {
+  for (int a = 0; a < 3; ++a) {
+    if (c[a] < 0 || c[a] >= layout_[a]) {
+      if (!domain_.periodic[a]) return -1;
+      c[a] = ((c[a] % layout_[a]) + layout_[a]) % layout_[a];
+    }
+  }
+  return c[0] + layout_[0] * (c[1] + layout_[1] * c[2]);
+}
+
+std::array<int, 3> Decomposition::coordsOf(int rank) const {
+  return {rank % layout_[0], (rank / layout_[0]) % layout_[1], rank / (layout_[0] * layout_[1])};
+}
+
+int Decomposition::ownerOf(const Vec3& x) const {
+  std::array<int, 3> c{};
+  for (int a = 0; a < 3; ++a) {
+    const auto& cuts = cut_[a];
+    // First cut above x, minus one: the box [cut_k, cut_k+1) holding x.
+    const auto k = static_cast<int>(std::upper_bound(cuts.begin() + 1, cuts.end() - 1, x[a]) - (cuts.begin() + 1));
+    c[a] = std::clamp(k, 0, layout_[a] - 1);
+  }
+  return c[0] + layout_[0] * (c[1] + layout_[1] * c[2]);
+}
+
+Vec3 Decomposition::lower(int rank) const {
+  const auto c = coordsOf(rank);
+  return {cut(0, c[0]), cut(1, c[1]), cut(2, c[2])};
+}
+
+Vec3 Decomposition::upper(int rank) const {
+  const auto c = coordsOf(rank);
+  return {cut(0, c[0] + 1), cut(1, c[1] + 1), cut(2, c[2] + 1)};
+}
+
+std::array<int, 3> Decomposition::cellOffset(int rank) const {
+  if (!gridded()) return {0, 0, 0};
+  const auto c = coordsOf(rank);
+  return {cellCut_[0][static_cast<std::size_t>(c[0])], cellCut_[1][static_cast<std::size_t>(c[1])],
+          cellCut_[2][static_cast<std::size_t>(c[2])]};
+}
+
+std::array<int, 3> Decomposition::cellCount(int rank) const {
+  if (!gridded()) return {0, 0, 0};
+  const auto c = coordsOf(rank);
+  std::array<int, 3> n{};
+  for (int a = 0; a < 3; ++a)
+    n[a] = cellCut_[a][static_cast<std::size_t>(c[a]) + 1] - cellCut_[a][static_cast<std::size_t>(c[a])];
+  return n;
+}
+
+Side Decomposition::side(int axis, int dir) const {
+  const int next = coords_[axis] + dir;
+  if (next >= 0 && next < layout_[axis]) return Side::Shared;
+  return domain_.periodic[axis] ? (layout_[axis] > 1 ? Side::Shared : Side::Periodic) : Side::Physical;
+}
+
+int Decomposition::neighbourAcross(int axis, int dir) const {
+  std::array<int, 3> c = coords_;
+  c[axis] += dir;
+  return rankAt(c);
+}
+
+Vec3 Decomposition::distanceToBox(const Vec3& x, int rank) const {
+  const Vec3 lo = lower(rank), hi = upper(rank);
+  Vec3 d;
+  for (int a = 0; a < 3; ++a) {
+    auto along = [&](double v) { return v < lo[a] ? lo[a] - v : (v > hi[a] ? v - hi[a] : 0.0); };
+    double best = along(x[a]);
+    if (domain_.periodic[a]) {
+      const double length = domain_.max[a] - domain_.min[a];
+      best = std::min({best, along(x[a] - length), along(x[a] + length)});
+    }
+    d[a] = best;
+  }
+  return d;
+}
+
+double Decomposition::smallestBoxWidth() const {
+  double w = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a)
+    if (layout_[a] > 1)
+      for (int k = 0; k < layout_[a]; ++k) w = std::min(w, cut(a, k + 1) - cut(a, k));
+  return w;
+}
+
+std::string Decomposition::describe() const { return fmt::format("{} x {} x {}", layout_[0], layout_[1], layout_[2]); }
+
+}  // namespace gf::parallel

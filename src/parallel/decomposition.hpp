@@ -1,0 +1,102 @@
+#pragma once
+// How the domain is split among the MPI ranks: one box per rank on a Cartesian layout of
+// px x py x pz ranks (domain.decomposition). This is the one topology object every subsystem asks:
+// the global box, the rank's own box and (on a grid) its cell offset, the neighbour ranks, and for
+// each side of the rank's box whether it is a physical boundary, a periodic boundary of the
+// domain, or shared with another rank.
+//
+// Cuts: with a fluid grid the boxes are whole cells (cut k along axis a at cell cellCut[a][k],
+// cells split as evenly as possible); without one the boxes are equal slabs of the domain. A
+// position belongs to the box whose half-open range [cut_k, cut_k+1) holds it (the last box of a
+// bounded axis also holds its upper face), so ownership is a pure function of the position and
+// the same on every rank.
+//
+// Pure data and arithmetic: no MPI here (the verbs that move data are in this directory's other
+// files), so the layout can be built and tested for any rank count in one process.
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/domain.hpp"
+#include "core/vec3.hpp"
+
+namespace gf::parallel {
+
+/// What lies beyond one face of a rank's box.
+enum class Side { Physical, Periodic, Shared };
+
+/// The layout asked for in the case: {0, 0, 0} = auto.
+using Layout = std::array<int, 3>;
+
+class Decomposition {
+ public:
+  /// One rank owning an empty domain (replace before use).
+  Decomposition() : Decomposition(Domain{}, {1, 1, 1}, 1, 0) {}
+  /// `ranks` boxes on the layout `layout` ({0,0,0}: chosen by autoLayout), for the rank `rank`.
+  /// `cells`: the fluid grid's cells per axis ({0,0,0}: no grid; equal slabs of the domain).
+  /// Throws std::invalid_argument when the layout does not multiply to `ranks`, or an axis has
+  /// more ranks than cells.
+  Decomposition(const Domain& domain, Layout layout, int ranks, int rank, std::array<int, 3> cells = {0, 0, 0});
+
+  /// The layout with least halo surface for `ranks` ranks: among all px*py*pz = ranks with at most
+  /// one rank per cell along each axis, the one whose cuts have the smallest total area (a cut
+  /// across a periodic axis counts once per rank, a bounded one once per interior cut).
+  static Layout autoLayout(const Domain& domain, int ranks, std::array<int, 3> cells = {0, 0, 0});
+
+  const Domain& domain() const { return domain_; }
+  const Layout& layout() const { return layout_; }
+  int ranks() const { return layout_[0] * layout_[1] * layout_[2]; }
+  int rank() const { return rank_; }
+  bool distributed() const { return ranks() > 1; }
+  /// This rank's position in the layout.
+  const std::array<int, 3>& coords() const { return coords_; }
+
+  /// Rank at layout coordinates c; periodic axes wrap, -1 beyond a bounded axis.
+  int rankAt(std::array<int, 3> c) const;
+  std::array<int, 3> coordsOf(int rank) const;
+  /// The rank whose box holds position x (positions outside a bounded axis go to the nearest box).
+  int ownerOf(const Vec3& x) const;
+  /// Box of a rank (this rank's by default).
+  Vec3 lower(int rank) const;
+  Vec3 upper(int rank) const;
+  Vec3 lower() const { return lower(rank_); }
+  Vec3 upper() const { return upper(rank_); }
+  /// With a grid: the first global cell and the number of cells of a rank's box along each axis.
+  std::array<int, 3> cellOffset(int rank) const;
+  std::array<int, 3> cellCount(int rank) const;
+  std::array<int, 3> cellOffset() const { return cellOffset(rank_); }
+  std::array<int, 3> cellCount() const { return cellCount(rank_); }
+  bool gridded() const { return !cellCut_[0].empty(); }
+
+  /// What lies beyond the lower (dir = -1) or upper (dir = +1) face of this rank's box along axis.
+  Side side(int axis, int dir) const;
+  /// The rank across that face (-1 beyond a physical face; this rank itself across a periodic face
+  /// of an axis with one rank).
+  int neighbourAcross(int axis, int dir) const;
+  /// The distinct other ranks among the 26 face, edge and corner neighbours (ascending).
+  const std::vector<int>& neighbourRanks() const { return neighbours_; }
+
+  /// Per axis, the distance from x to the box of `rank` along that axis (0 inside its range), with
+  /// the nearest periodic image on periodic axes. A particle whose three distances are below a
+  /// cut-off may interact with particles owned by that rank.
+  Vec3 distanceToBox(const Vec3& x, int rank) const;
+  /// The smallest box width of any rank along any decomposed axis (m); +inf on one rank.
+  double smallestBoxWidth() const;
+
+  /// "2 x 1 x 1" for messages.
+  std::string describe() const;
+
+ private:
+  double cut(int axis, int k) const { return cut_[axis][static_cast<std::size_t>(k)]; }
+
+  Domain domain_{};
+  Layout layout_{1, 1, 1};
+  int rank_ = 0;
+  std::array<int, 3> coords_{0, 0, 0};
+  std::array<std::vector<double>, 3> cut_{std::vector<double>{}, {}, {}};  // layout[a] + 1 coordinates
+  std::array<std::vector<int>, 3> cellCut_{};  // layout[a] + 1 cell indices (gridded only)
+  std::vector<int> neighbours_;
+};
+
+}  // namespace gf::parallel

@@ -1,0 +1,92 @@
+// The ranks' layout (parallel/decomposition.hpp) for any rank count, in one process: automatic
+// layouts minimise the cut area, ownership is a pure function of position, boxes tile the domain,
+// periodic axes wrap, and bad layouts are refused.
+#include "parallel/decomposition.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+namespace gf::parallel {
+namespace {
+
+Domain box(Vec3 max, std::array<bool, 3> periodic = {false, false, false}) {
+  Domain d;
+  d.min = {0, 0, 0};
+  d.max = max;
+  d.periodic = periodic;
+  return d;
+}
+
+TEST(Decomposition, AutoLayoutCutsAcrossTheLongAxis) {
+  // A tall column: cuts across z have the smallest area.
+  EXPECT_EQ(Decomposition::autoLayout(box({0.03, 0.03, 0.12}), 2), (Layout{1, 1, 2}));
+  EXPECT_EQ(Decomposition::autoLayout(box({0.03, 0.03, 0.12}), 4), (Layout{1, 1, 4}));
+  // A cube on 8 ranks: 2 x 2 x 2 (area 3 faces) beats 8 slabs (7 faces).
+  EXPECT_EQ(Decomposition::autoLayout(box({1, 1, 1}), 8), (Layout{2, 2, 2}));
+  // A grid of 4 cells along z cannot take 8 ranks there.
+  EXPECT_EQ(Decomposition::autoLayout(box({1, 1, 10}), 8, {64, 64, 4}), (Layout{2, 1, 4}));
+  // A periodic axis split in two has two cuts; a bounded one one.
+  EXPECT_EQ(Decomposition::autoLayout(box({1.2, 1, 1}, {true, false, false}), 2), (Layout{1, 2, 1}));
+}
+
+TEST(Decomposition, BoxesTileTheDomainAndOwnershipFollowsPosition) {
+  const Domain d = box({1.0, 2.0, 3.0});
+  for (int ranks : {1, 2, 3, 4, 6, 12}) {
+    double volume = 0.0;
+    for (int r = 0; r < ranks; ++r) {
+      const Decomposition dec(d, {0, 0, 0}, ranks, r);
+      const Vec3 lo = dec.lower(), hi = dec.upper();
+      volume += (hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z);
+      EXPECT_EQ(dec.ownerOf(0.5 * (lo + hi)), r);
+      EXPECT_EQ(dec.ownerOf(lo), r);  // the lower faces belong to the box
+    }
+    EXPECT_NEAR(volume, 6.0, 1e-12) << ranks;
+  }
+  // Positions outside a bounded axis go to the nearest box.
+  const Decomposition dec(d, {1, 1, 2}, 2, 0);
+  EXPECT_EQ(dec.ownerOf({0.5, 1.0, -0.1}), 0);
+  EXPECT_EQ(dec.ownerOf({0.5, 1.0, 3.1}), 1);
+  EXPECT_EQ(dec.ownerOf({0.5, 1.0, 3.0}), 1);  // the upper face of the last box
+}
+
+TEST(Decomposition, GridCutsFollowCells) {
+  // 10 cells on 3 ranks: 4, 3, 3 cells.
+  const Domain d = box({1.0, 1.0, 1.0});
+  const int expected[3] = {4, 3, 3};
+  int offset = 0;
+  for (int r = 0; r < 3; ++r) {
+    const Decomposition dec(d, {3, 1, 1}, 3, r, {10, 5, 5});
+    EXPECT_EQ(dec.cellCount()[0], expected[r]);
+    EXPECT_EQ(dec.cellOffset()[0], offset);
+    EXPECT_NEAR(dec.lower().x, 0.1 * offset, 1e-15);
+    offset += expected[r];
+  }
+}
+
+TEST(Decomposition, SidesNeighboursAndPeriodicDistances) {
+  const Domain d = box({2.0, 1.0, 1.0}, {true, false, false});
+  const Decomposition left(d, {2, 1, 1}, 2, 0);
+  EXPECT_EQ(left.side(0, -1), Side::Shared);  // periodic wrap to rank 1
+  EXPECT_EQ(left.side(0, +1), Side::Shared);
+  EXPECT_EQ(left.side(1, -1), Side::Physical);
+  EXPECT_EQ(left.neighbourAcross(0, -1), 1);
+  EXPECT_EQ(left.neighbourRanks(), (std::vector<int>{1}));
+  // x = 1.95 lies in rank 1's box; its periodic image is 0.05 from rank 0's lower face.
+  EXPECT_NEAR(left.distanceToBox({1.95, 0.5, 0.5}, 0).x, 0.05, 1e-12);
+  EXPECT_NEAR(left.distanceToBox({1.95, 0.5, 0.5}, 1).x, 0.0, 1e-15);
+  EXPECT_NEAR(left.distanceToBox({0.5, 1.5, 0.5}, 1).y, 0.5, 1e-15);  // (bounded y: no image)
+  const Decomposition single(d, {1, 1, 1}, 1, 0);
+  EXPECT_EQ(single.side(0, -1), Side::Periodic);
+  EXPECT_TRUE(single.neighbourRanks().empty());
+}
+
+TEST(Decomposition, RefusesLayoutsThatDoNotFit) {
+  const Domain d = box({1.0, 1.0, 1.0});
+  EXPECT_THROW(Decomposition(d, {3, 1, 1}, 2, 0), std::invalid_argument);      // 3 boxes for 2 ranks
+  EXPECT_THROW(Decomposition(d, {4, 1, 1}, 4, 0, {2, 8, 8}), std::invalid_argument);  // 4 ranks, 2 cells
+  EXPECT_THROW(Decomposition::autoLayout(d, 7, {2, 2, 1}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace gf::parallel

@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# DEM-only runs on several MPI ranks give the same bits as on one (ParticleSet::orderKey and the
+# ghosts of src/dem/system_parallel.cpp): the rank-independent checkpoint files of runs on 1, 2 and 4
+# ranks are byte-identical, a run checkpointed on 4 ranks continues on 1 and on 3 ranks to the same
+# bits as an uninterrupted run, and layouts that do not fit are refused before the run.
+#   usage: dem_ranks_test.sh GRAINFLOW MPIEXEC SOURCE_DIR
+set -euo pipefail
+grainflow=$1 mpiexec=$2 src=$3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
+# More ranks than cores: waiting ranks yield instead of spinning.
+export OMPI_MCA_mpi_yield_when_idle=1
+
+run() {  # run RANKS CASE OUTPUT [options]
+  local ranks=$1 case=$2 out=$3
+  shift 3
+  "$mpiexec" --oversubscribe -n "$ranks" "$grainflow" run "$case" --quiet --threads 1 --output "$out" "$@"
+}
+same() {  # same A B WHAT
+  if cmp -s "$1" "$2"; then echo "ok: $3"; else echo "FAIL: $3 ($1 and $2 differ)"; exit 1; fi
+}
+
+# 1. A settling bed in a box (polydisperse, Hertz-Mindlin, walls), split along z.
+bed=$work/bed.yaml
+sed -e 's/count: 2000/count: 600/' "$src/cases/dem_packed_bed_settling.yaml" >"$bed"
+for n in 1 2 4; do run $n "$bed" "$work/bed$n" --end-time 0.04; done
+same "$work/bed1/checkpoint.bin" "$work/bed2/checkpoint.bin" "settling bed: 2 ranks = 1 rank"
+same "$work/bed1/checkpoint.bin" "$work/bed4/checkpoint.bin" "settling bed: 4 ranks = 1 rank"
+same "$work/bed1/kinetic_energy.csv" "$work/bed4/kinetic_energy.csv" "settling bed: kinetic energy monitor on 4 ranks"
+
+# 2. Restart across rank counts: 4 ranks to half time, then 1 and 3 ranks to the end.
+run 4 "$bed" "$work/half4" --end-time 0.02
+run 1 "$bed" "$work/rest1" --end-time 0.04 --restart "$work/half4/checkpoint.bin"
+run 3 "$bed" "$work/rest3" --end-time 0.04 --restart "$work/half4/checkpoint.bin"
+same "$work/bed1/checkpoint.bin" "$work/rest1/checkpoint.bin" "restart: 4 ranks then 1 = uninterrupted"
+same "$work/bed1/checkpoint.bin" "$work/rest3/checkpoint.bin" "restart: 4 ranks then 3 = uninterrupted"
+
+# 3. A hopper: outlet, a plug that disappears, cylinder and disk walls, particles crossing ranks.
+hopper=$work/hopper.yaml
+sed -e 's/count: [0-9]*/count: 800/' "$src/cases/dem_hopper_discharge.yaml" >"$hopper"
+for n in 1 4; do run $n "$hopper" "$work/hopper$n" --end-time 0.02; done
+same "$work/hopper1/checkpoint.bin" "$work/hopper4/checkpoint.bin" "hopper: 4 ranks = 1 rank"
+
+# 4. A periodic box (x and y periodic, split 2 x 2): ghosts and migration across periodic faces.
+cat >"$work/periodic.yaml" <<'CASE'
+case: {name: periodic_box}
+domain: {min: [0, 0, 0], max: [0.02, 0.02, 0.03], periodic: [1, 1, 0], decomposition: [2, 2, 1]}
+time: {end: 0.03, dem_step: 1.0e-5}
+materials:
+  - {name: glass, density: 2500.0, youngs_modulus: 1.0e7, poisson_ratio: 0.3}
+contact: {law: hertz_mindlin, restitution: 0.5, friction: 0.4, rolling: epsd, rolling_friction: 0.1}
+walls:
+  - {type: plane, name: floor, point: [0, 0, 0], normal: [0, 0, 1], material: glass}
+insertion:
+  - type: random_packing
+    material: glass
+    min: [0, 0, 0.002]
+    max: [0.02, 0.02, 0.028]
+    count: 500
+    velocity: [0.3, 0.2, 0]
+    size: {distribution: log_normal, median_diameter: 0.0015, sigma: 0.15}
+CASE
+for n in 1 4; do
+  sed -e "s/decomposition: \[2, 2, 1\]/decomposition: $([[ $n == 1 ]] && echo auto || echo '[2, 2, 1]')/" \
+    "$work/periodic.yaml" >"$work/periodic$n.yaml"
+  run $n "$work/periodic$n.yaml" "$work/periodic$n"
+done
+same "$work/periodic1/checkpoint.bin" "$work/periodic4/checkpoint.bin" "periodic box 2 x 2: 4 ranks = 1 rank"
+
+# 5. Layouts that do not fit are refused before the run (exit code 1: invalid case file).
+expect_refused() {  # expect_refused RANKS LAYOUT TEXT [sed expression]
+  sed -e "s/decomposition: \[2, 2, 1\]/decomposition: $2/" -e "${4:-s/^//}" "$work/periodic.yaml" >"$work/bad.yaml"
+  set +e
+  message=$(run "$1" "$work/bad.yaml" "$work/bad" 2>&1)
+  code=$?
+  set -e
+  if [[ $code -ne 1 || $message != *"$3"* || -e $work/bad/checkpoint.bin ]]; then
+    echo "FAIL: layout $2 on $1 ranks: exit $code, message: $message"
+    exit 1
+  fi
+  echo "ok: layout $2 on $1 ranks refused: $(head -n1 <<<"$message")"
+}
+expect_refused 2 "[3, 1, 1]" "decomposition"
+# 5 mm boxes for spheres of up to about 7 mm
+expect_refused 4 "[4, 1, 1]" "narrower than the contact reach" "s/count: 500/count: 10/; s/median_diameter: 0.0015/median_diameter: 0.0045/"
