@@ -249,7 +249,7 @@ void Simulation::prepare() {
     throw Error(fmt::format("output directory '{}' already holds a run (run.yaml); pass --overwrite to replace it "
                             "or --output to choose another directory",
                             dir.string()));
-  if (rootRank()) fs::create_directories(dir, ec);
+  if (rootRank()) fs::create_directories(decomposition_.distributed() ? dir / "pieces" : dir, ec);
   synchroniseRanks();
   if (ec || !fs::is_directory(dir))
     throw Error(fmt::format("output directory '{}' cannot be created: {}", dir.string(),
@@ -261,8 +261,12 @@ void Simulation::prepare() {
   } else if (options_.overwrite && rootRank()) {
     for (const auto& entry : fs::directory_iterator(dir)) {
       const std::string ext = entry.path().extension().string();
-      if (ext == ".vtu" || ext == ".vti" || ext == ".pvd" || ext == ".csv" || ext == ".bin") fs::remove(entry.path());
+      if (ext == ".vtu" || ext == ".vti" || ext == ".pvtu" || ext == ".pvti" || ext == ".pvd" || ext == ".csv" ||
+          ext == ".bin")
+        fs::remove(entry.path());
     }
+    if (fs::is_directory(dir / "pieces", ec))
+      for (const auto& entry : fs::directory_iterator(dir / "pieces")) fs::remove(entry.path());
   }
   if (rootRank())
     io::writeFileAtomically((dir / "run.yaml").string(),
@@ -380,13 +384,28 @@ void Simulation::writeOutput() {
   if (settings_.writeParticles) {
     const std::string file = fmt::format("particles_{:06d}.vtu", outputCount_);
     if (decomposition_.distributed()) {
-      // (gathered on rank 0, which writes one file)
-      const dem::ParticleSet all = dem_->gatherParticles();
-      if (rootRank()) io::writeFileAtomically((dir / file).string(), io::particlesVtu(all));
+      // Each rank writes its own particles (pieces/particles_<output>_<rank>.vtu); rank 0 writes the
+      // .pvtu that binds them, which the .pvd series lists: ParaView opens one data set.
+      const int ranks = decomposition_.ranks();
+      auto pieceName = [&](int rank) { return fmt::format("pieces/particles_{:06d}_{:04d}.vtu", outputCount_, rank); };
+      const dem::ParticleSet& p = dem_->particles();
+      dem::ParticleSet owned = p;
+      std::vector<std::uint32_t> mine;
+      for (std::size_t i = 0; i < p.size(); ++i)
+        if (!p.isGhost(i)) mine.push_back(static_cast<std::uint32_t>(i));
+      owned.gather(mine);
+      io::writeFileAtomically((dir / pieceName(decomposition_.rank())).string(), io::particlesVtu(owned));
+      const std::string parallelFile = fmt::format("particles_{:06d}.pvtu", outputCount_);
+      if (rootRank()) {
+        std::vector<std::string> pieces;
+        for (int r = 0; r < ranks; ++r) pieces.push_back(pieceName(r));
+        io::writeFileAtomically((dir / parallelFile).string(), io::particlesPvtu(pieces));
+        particleSeries_.add(time(), parallelFile);
+      }
     } else {
       io::writeFileAtomically((dir / file).string(), io::particlesVtu(dem_->particles()));
+      particleSeries_.add(time(), file);
     }
-    if (rootRank()) particleSeries_.add(time(), file);
   }
   if (fluid_ && settings_.writeFluid) {
     const std::string file = fmt::format("fluid_{:06d}.vti", outputCount_);

@@ -173,6 +173,67 @@ std::string cellFieldsVti(const CartesianGrid& grid, const std::vector<VtkArray>
   return out;
 }
 
+std::string cellFieldsVtiPiece(const CartesianGrid& grid, const std::array<int, 3>& offset, const CartesianGrid& whole,
+                               const std::vector<VtkArray>& cellArrays) {
+  // The single-file writer, then the extents moved into the whole grid's index space.
+  std::string out = cellFieldsVti(grid, cellArrays);
+  const auto& n = grid.cells;
+  const std::string local = fmt::format("WholeExtent=\"0 {} 0 {} 0 {}\" Origin=\"{:.17g} {:.17g} {:.17g}\"", n[0], n[1], n[2],
+                                        grid.origin.x, grid.origin.y, grid.origin.z);
+  const std::string global =
+      fmt::format("WholeExtent=\"0 {} 0 {} 0 {}\" Origin=\"{:.17g} {:.17g} {:.17g}\"", whole.cells[0], whole.cells[1],
+                  whole.cells[2], whole.origin.x, whole.origin.y, whole.origin.z);
+  out.replace(out.find(local), local.size(), global);
+  const std::string localPiece = fmt::format("<Piece Extent=\"0 {} 0 {} 0 {}\">", n[0], n[1], n[2]);
+  const std::string globalPiece =
+      fmt::format("<Piece Extent=\"{} {} {} {} {} {}\">", offset[0], offset[0] + n[0], offset[1], offset[1] + n[1],
+                  offset[2], offset[2] + n[2]);
+  out.replace(out.find(localPiece), localPiece.size(), globalPiece);
+  return out;
+}
+
+std::string particlesPvtu(const std::vector<std::string>& pieces) {
+  std::string out;
+  out += "<?xml version=\"1.0\"?>\n";
+  out += "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
+  out += "  <PUnstructuredGrid GhostLevel=\"0\">\n";
+  out += "    <PPointData Scalars=\"radius\" Vectors=\"velocity\">\n";
+  out += "      <PDataArray type=\"Int64\" Name=\"id\" NumberOfComponents=\"1\"/>\n";
+  out += "      <PDataArray type=\"Int64\" Name=\"type\" NumberOfComponents=\"1\"/>\n";
+  out += "      <PDataArray type=\"Float64\" Name=\"radius\" NumberOfComponents=\"1\"/>\n";
+  for (const char* v : {"velocity", "angular_velocity", "force"})
+    out += fmt::format("      <PDataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\"/>\n", v);
+  out += "    </PPointData>\n";
+  out += "    <PPoints>\n      <PDataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"/>\n    </PPoints>\n";
+  for (const std::string& piece : pieces) out += fmt::format("    <Piece Source=\"{}\"/>\n", piece);
+  out += "  </PUnstructuredGrid>\n</VTKFile>\n";
+  return out;
+}
+
+std::string cellFieldsPvti(const CartesianGrid& whole, const std::vector<std::string>& pieces,
+                           const std::vector<std::array<int, 6>>& extents, const std::vector<VtkArray>& arrayKinds) {
+  std::string out;
+  out += "<?xml version=\"1.0\"?>\n";
+  out += "<VTKFile type=\"PImageData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
+  out += fmt::format(
+      "  <PImageData WholeExtent=\"0 {} 0 {} 0 {}\" GhostLevel=\"0\" Origin=\"{:.17g} {:.17g} {:.17g}\" "
+      "Spacing=\"{:.17g} {:.17g} {:.17g}\">\n",
+      whole.cells[0], whole.cells[1], whole.cells[2], whole.origin.x, whole.origin.y, whole.origin.z, whole.spacing.x,
+      whole.spacing.y, whole.spacing.z);
+  out += "    <PCellData>\n";
+  for (const VtkArray& a : arrayKinds)
+    out += fmt::format("      <PDataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\"/>\n",
+                       a.isInteger ? "Int64" : "Float64", a.name, a.components);
+  out += "    </PCellData>\n";
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    const auto& e = extents[k];
+    out += fmt::format("    <Piece Extent=\"{} {} {} {} {} {}\" Source=\"{}\"/>\n", e[0], e[1], e[2], e[3], e[4], e[5],
+                       pieces[k]);
+  }
+  out += "  </PImageData>\n</VTKFile>\n";
+  return out;
+}
+
 namespace {
 std::string attribute(const std::string& tag, const std::string& name) {
   const std::string key = " " + name + "=\"";

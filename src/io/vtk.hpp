@@ -2,6 +2,7 @@
 // ParaView-readable VTK XML output: particles as PolyData-free UnstructuredGrid (.vtu, one vertex
 // per particle), cell fields as ImageData (.vti), and .pvd collections with physical times.
 // Arrays are written in binary (base64, UInt64 headers), so files are compact yet plain XML.
+#include <array>
 #include <cstdint>
 #include <map>
 #include <span>
@@ -50,6 +51,18 @@ std::string particlesVtu(const ParticleStorage& p) {
 VtkArray cellArray(const std::string& name, const Field& field);
 /// Cell-centred fields on a grid (interior cells only).
 std::string cellFieldsVti(const CartesianGrid& grid, const std::vector<VtkArray>& cellArrays);
+/// One rank's piece of a grid split among ranks: `grid` is the rank's box of cells, which starts at
+/// global cell `offset` of the whole grid `whole` (the piece's extent is written in the whole
+/// grid's index space, as .pvti readers expect).
+std::string cellFieldsVtiPiece(const CartesianGrid& grid, const std::array<int, 3>& offset, const CartesianGrid& whole,
+                               const std::vector<VtkArray>& cellArrays);
+
+/// The parallel files that bind one piece per rank into one data set for ParaView: particles
+/// (.pvtu, the arrays of particlesVtu) and cell fields (.pvti; `extents` per piece: offset and
+/// cell counts in the whole grid). `pieces` are file names relative to the parallel file.
+std::string particlesPvtu(const std::vector<std::string>& pieces);
+std::string cellFieldsPvti(const CartesianGrid& whole, const std::vector<std::string>& pieces,
+                           const std::vector<std::array<int, 6>>& extents, const std::vector<VtkArray>& arrayKinds);
 
 /// All DataArrays of a VTK XML file written by this module, decoded (for tests and post-processing).
 std::map<std::string, VtkArray> readVtkArrays(const std::string& xml);

@@ -28,6 +28,16 @@ for n in 1 2 4; do run $n "$bed" "$work/bed$n" --end-time 0.04; done
 same "$work/bed1/checkpoint.bin" "$work/bed2/checkpoint.bin" "settling bed: 2 ranks = 1 rank"
 same "$work/bed1/checkpoint.bin" "$work/bed4/checkpoint.bin" "settling bed: 4 ranks = 1 rank"
 same "$work/bed1/kinetic_energy.csv" "$work/bed4/kinetic_energy.csv" "settling bed: kinetic energy monitor on 4 ranks"
+# Output on 4 ranks: one piece per rank, bound by a .pvtu that the .pvd lists; the pieces hold
+# every particle once.
+last=$(ls "$work/bed1"/particles_*.vtu | tail -n1)
+last=$(basename "$last" .vtu)
+points() { sed -n 's/.*<Piece NumberOfPoints="\([0-9]*\)".*/\1/p' "$@" | awk '{s += $1} END {print s}'; }
+[[ $(grep -c '<Piece Source=' "$work/bed4/$last.pvtu") == 4 ]] || { echo "FAIL: $last.pvtu does not list 4 pieces"; exit 1; }
+grep -q "file=\"$last.pvtu\"" "$work/bed4/particles.pvd" || { echo "FAIL: particles.pvd does not list $last.pvtu"; exit 1; }
+[[ $(points "$work/bed4/pieces/${last}"_*.vtu) == $(points "$work/bed1/$last.vtu") ]] ||
+  { echo "FAIL: the pieces of $last do not hold every particle once"; exit 1; }
+echo "ok: output on 4 ranks: $last.pvtu binds 4 pieces with all $(points "$work/bed1/$last.vtu") particles"
 
 # 2. Restart across rank counts: 4 ranks to half time, then 1 and 3 ranks to the end.
 run 4 "$bed" "$work/half4" --end-time 0.02
@@ -84,3 +94,18 @@ expect_refused() {  # expect_refused RANKS LAYOUT TEXT [sed expression]
 expect_refused 2 "[3, 1, 1]" "decomposition"
 # 5 mm boxes for spheres of up to about 7 mm
 expect_refused 4 "[4, 1, 1]" "narrower than the contact reach" "s/count: 500/count: 10/; s/median_diameter: 0.0015/median_diameter: 0.0045/"
+
+# 6. A divergence seen by one rank stops every rank with one message naming that rank (exit code 3),
+#    and the last good checkpoint stays.
+sed -e '/name: floor/d' -e 's/^walls:$/walls: []/' -e 's/time: {end: 0.03, dem_step: 1.0e-5}/time: {end: 0.1, dem_step: 1.0e-5}\ncheckpoint: {interval_steps: 500}/' \
+  "$work/periodic.yaml" >"$work/falls.yaml"
+set +e
+message=$(run 4 "$work/falls.yaml" "$work/falls" 2>&1)
+code=$?
+set -e
+count=$(grep -c "particle left the domain" <<<"$message" || true)
+if [[ $code -ne 3 || $count -ne 1 || $message != *"on rank "* || ! -s $work/falls/checkpoint.bin ]]; then
+  echo "FAIL: divergence on 4 ranks: exit $code, $count messages: $message"
+  exit 1
+fi
+echo "ok: divergence on 4 ranks: $(grep "particle left the domain" <<<"$message")"
