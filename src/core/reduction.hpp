@@ -34,12 +34,38 @@ struct SumPolicy {
   bool interleaved = false;
 };
 
+/// How partial results combine across the processes of a decomposed grid: allreduces, installed
+/// by parallel::RankReductionScope (parallel/reductions.hpp) around the work of a solver whose grid
+/// is split among ranks. None installed (one process, or a solver that owns its whole grid): every
+/// combination is the identity, and the results have the bits of the local sums. The functions are
+/// called on the thread that called MPI (outside OpenMP regions, or by one member of a team).
+struct RankReductions {
+  double (*sum)(double);
+  std::pair<double, double> (*sum2)(std::pair<double, double>);
+  double (*max)(double);
+};
+namespace detail {
+inline const RankReductions* activeRankReductions = nullptr;
+}  // namespace detail
+/// The combination in force (null: none); set through parallel::RankReductionScope.
+inline const RankReductions* rankReductions() { return detail::activeRankReductions; }
+inline void setRankReductions(const RankReductions* r) { detail::activeRankReductions = r; }
+
 /// The sum of the local sums of all processes. One process: `local` itself.
-inline double sumAcrossRanks(double local) { return local; }
+inline double sumAcrossRanks(double local) {
+  const RankReductions* r = detail::activeRankReductions;
+  return r ? r->sum(local) : local;
+}
 /// Two sums combined at once (one message for both, with several processes).
-inline std::pair<double, double> sumAcrossRanks(std::pair<double, double> local) { return local; }
+inline std::pair<double, double> sumAcrossRanks(std::pair<double, double> local) {
+  const RankReductions* r = detail::activeRankReductions;
+  return r ? r->sum2(local) : local;
+}
 /// The largest of the local maxima of all processes. One process: `local` itself.
-inline double maxAcrossRanks(double local) { return local; }
+inline double maxAcrossRanks(double local) {
+  const RankReductions* r = detail::activeRankReductions;
+  return r ? r->max(local) : local;
+}
 
 /// Sum with four interleaved partial sums in a fixed order (so deterministic): breaks the add
 /// latency chain of a single accumulator.

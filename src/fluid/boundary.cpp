@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "fluid/loops.hpp"
+#include "parallel/halo.hpp"
 
 namespace gf::fluid {
 
@@ -91,13 +92,39 @@ Boundaries Boundaries::read(Params& fluid, const std::array<bool, 3>& periodic, 
   return bc;
 }
 
+void Boundaries::decompose(std::shared_ptr<const parallel::Decomposition> d, const Vec3& origin,
+                           const std::array<int, 3>& cells) {
+  if (!decomposition)
+    for (int s = 0; s < 6; ++s) domainType[s] = side[s].type;
+  decomposition = std::move(d);
+  domainOrigin = origin;
+  domainCells = cells;
+  for (int s = 0; s < 6; ++s) {
+    side[s].type = domainType[s];
+    if (decomposition->side(s / 2, s % 2 == 0 ? -1 : 1) == parallel::Side::Shared) side[s].type = BoundaryType::Shared;
+  }
+}
+
+namespace {
+/// The exchange of a ghost fill on a decomposed grid, before the conditions of the physical and
+/// periodic sides (their lines read the exchanged ghost rows). Only for a fill of all planes: the
+/// plane teams (GhostPlanes of one member) are not used on a decomposed grid.
+void exchangeGhosts(Field& f, const Boundaries& bc, bool allPlanes) {
+  if (bc.distributed() && allPlanes) parallel::fillGhosts(f, *bc.decomposition);
+}
+bool allPlanes(const GhostPlanes& p) { return p.kBegin == 0 && p.kEnd < 0 && p.lowZ && p.highZ; }
+}  // namespace
+
 double inletNormalVelocity(const Boundaries& bc, int axis, int side, const CartesianGrid& g, const Vec3& x) {
   const BoundarySide& s = bc.at(axis, side);
   double u = s.velocity[axis] * rampFactor(s, bc.time);
   if (!s.parabolic) return u;
+  // (across the whole domain: on a decomposed grid, its origin and cells)
+  const bool whole = bc.decomposition == nullptr;
   for (int b = 0; b < 3; ++b) {
-    if (b == axis || bc.periodic(b)) continue;
-    const double xi = (x[b] - g.origin[b]) / (g.cells[b] * g.spacing[b]);
+    if (b == axis || bc.domainPeriodic(b)) continue;
+    const double xi = whole ? (x[b] - g.origin[b]) / (g.cells[b] * g.spacing[b])
+                            : (x[b] - bc.domainOrigin[b]) / (bc.domainCells[b] * g.spacing[b]);
     u *= 4.0 * xi * (1.0 - xi);
   }
   return u;
@@ -125,6 +152,7 @@ void fillVelocityGhostsPlanes(Field& u, int c, const Boundaries& bc, GhostMode m
   const int g = grid.ghosts;
   double* d = u.data().data();
   const bool full = mode == GhostMode::Full;
+  exchangeGhosts(u, bc, allPlanes(planes));
   for (int a = firstAxis; a < 3; ++a) {
     const int n = grid.cells[a];
     const std::ptrdiff_t st = u.stride(a);
@@ -150,6 +178,7 @@ void fillVelocityGhostsPlanes(Field& u, int c, const Boundaries& bc, GhostMode m
     }
     for (int s = 0; s < 2; ++s) {
       if (a == 2 && !(s == 0 ? planes.lowZ : planes.highZ)) continue;
+      if (bc.shared(a, s)) continue;
       const BoundarySide& side = bc.at(a, s);
       const std::ptrdiff_t in = s == 0 ? st : -st;  // one point inwards
       if (c == a) {
@@ -248,6 +277,7 @@ void stencilGhosts(Field& u, int c, const Boundaries& bc, int kBegin, int kEnd, 
   const CartesianGrid& grid = u.grid();
   const auto& pts = u.points();
   double* d = u.data().data();
+  exchangeGhosts(u, bc, threaded && kBegin == 0 && kEnd == pts[2] && lowZ && highZ);
   for (int a = 0; a < 3; ++a) {
     const int n = grid.cells[a];
     const bool periodic = bc.periodic(a);
@@ -290,6 +320,7 @@ void stencilGhosts(Field& u, int c, const Boundaries& bc, int kBegin, int kEnd, 
     }
     for (int s = 0; s < 2; ++s) {
       if (a == 2 && !(s == 0 ? lowZ : highZ)) continue;
+      if (bc.shared(a, s)) continue;
       const BoundarySide& side = bc.at(a, s);
       // at(k) = d[b + first + k * inward]: k = 0 is the row next to the boundary.
       const std::ptrdiff_t first = s == 0 ? 0 : (n - 1) * st, inward = s == 0 ? st : -st;
@@ -333,6 +364,7 @@ void fillCellGhostsPlanes(Field& f, const Boundaries& bc, CellGhostKind kind, co
   const CartesianGrid& grid = f.grid();
   const int g = grid.ghosts;
   double* d = f.data().data();
+  exchangeGhosts(f, bc, allPlanes(planes));
   for (int a = 0; a < 3; ++a) {
     const int n = grid.cells[a];
     const std::ptrdiff_t st = f.stride(a);
@@ -349,6 +381,7 @@ void fillCellGhostsPlanes(Field& f, const Boundaries& bc, CellGhostKind kind, co
     if (kind == CellGhostKind::PeriodicOnly) continue;
     for (int s = 0; s < 2; ++s) {
       if (a == 2 && !(s == 0 ? planes.lowZ : planes.highZ)) continue;
+      if (bc.shared(a, s)) continue;
       const BoundarySide& side = bc.at(a, s);
       bool dirichlet = false;
       double value = 0.0;

@@ -2,14 +2,18 @@
 // Boundary conditions of the fluid solver, one per box face (x_min, x_max, y_min, ...), and the
 // ghost-layer filling that applies them to staggered velocity and cell-centred fields.
 #include <array>
+#include <memory>
 #include <string>
 
 #include "core/grid.hpp"
 #include "core/params.hpp"
+#include "parallel/decomposition.hpp"
 
 namespace gf::fluid {
 
-enum class BoundaryType { Wall, Slip, Inlet, PressureOutlet, Outflow, Periodic };
+/// Shared: a side of this rank's box inside the domain on a decomposed grid (the ghosts beyond it
+/// are the neighbour rank's values, filled by parallel::fillGhosts; no condition applies there).
+enum class BoundaryType { Wall, Slip, Inlet, PressureOutlet, Outflow, Periodic, Shared };
 
 struct BoundarySide {
   BoundaryType type = BoundaryType::Wall;
@@ -37,8 +41,34 @@ struct Boundaries {
   /// eps_f the mean of the first cell and its ghost (the face eps of the continuity equation).
   /// Null: eps_f = 1. Set by the solver before every use.
   const Field* voidFraction = nullptr;
+  /// On a decomposed grid (decompose()): the ranks' layout, the conditions of the domain's own
+  /// sides (side[] then holds Shared where this rank's box meets a neighbour), and the domain's
+  /// grid (origin, cells) for the inlet profiles. Without: side[] are the domain's sides.
+  std::shared_ptr<const parallel::Decomposition> decomposition;
+  std::array<BoundaryType, 6> domainType{};  // (read through domainSide())
+  Vec3 domainOrigin;
+  std::array<int, 3> domainCells{0, 0, 0};
+
   const BoundarySide& at(int axis, int s) const { return side[sideIndex(axis, s)]; }
+  /// This rank wraps the axis itself (periodic, one rank along it): its ghosts copy its own other end.
   bool periodic(int axis) const { return side[sideIndex(axis, 0)].type == BoundaryType::Periodic; }
+  /// The condition of the domain's side (on a decomposed grid, also where this rank's side is Shared).
+  BoundaryType domainSide(int axis, int s) const {
+    return decomposition ? domainType[sideIndex(axis, s)] : side[sideIndex(axis, s)].type;
+  }
+  /// The domain is periodic along the axis (on one rank, or split among several).
+  bool domainPeriodic(int axis) const { return domainSide(axis, 0) == BoundaryType::Periodic; }
+  bool shared(int axis, int s) const { return side[sideIndex(axis, s)].type == BoundaryType::Shared; }
+  /// A side with a boundary condition of the domain (neither periodic nor shared with a neighbour).
+  bool physical(int axis, int s) const {
+    const BoundaryType t = side[sideIndex(axis, s)].type;
+    return t != BoundaryType::Periodic && t != BoundaryType::Shared;
+  }
+  /// Whether ghost fills exchange values with neighbour ranks (a decomposition of several ranks).
+  bool distributed() const { return decomposition && decomposition->distributed(); }
+  /// The sides of rank d's box: Shared where d says so, the domain's condition elsewhere; d is
+  /// kept, and the grid origin and cells of the whole domain.
+  void decompose(std::shared_ptr<const parallel::Decomposition> d, const Vec3& origin, const std::array<int, 3>& cells);
 
   /// Reads section 'boundaries' (x_min ... z_max); periodic directions come from the domain.
   /// In 2D (one cell in z) the z sides are periodic whatever the file says.

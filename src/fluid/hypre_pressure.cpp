@@ -47,6 +47,7 @@ struct HyprePressure::Impl {
   // preconditioned residual pick up the constant null vector, which PFMG's relaxation on the
   // coarsest (singular) level does not damp, and CG breaks down (alpha <= 0) before the tolerance.
   bool gauge = false;
+  bool own = false;  // the whole grid on this process (sums stay local)
   const std::vector<double>* diag = nullptr;
   double activeCells = 0.0;
   std::vector<double> scratch;
@@ -64,7 +65,7 @@ struct HyprePressure::Impl {
     const std::vector<double>& d = *h.diag;
     double local = 0.0;
     for (std::size_t c = 0; c < d.size(); ++c) local += d[c] > 0.0 ? h.scratch[c] : 0.0;
-    const double mean = parallel::Environment::instance().sum(local) / h.activeCells;
+    const double mean = (h.own ? local : parallel::Environment::instance().sum(local)) / h.activeCells;
     for (std::size_t c = 0; c < d.size(); ++c) h.scratch[c] = d[c] > 0.0 ? h.scratch[c] - mean : 0.0;
     HYPRE_StructVectorSetBoxValues(z, h.lower.data(), h.upper.data(), h.scratch.data());
     return code;
@@ -90,7 +91,7 @@ struct HyprePressure::Impl {
   ~Impl() { destroyLayout(); }
 };
 
-HyprePressure::HyprePressure() = default;
+HyprePressure::HyprePressure(bool own) : own_(own) {}
 HyprePressure::~HyprePressure() = default;
 
 void HyprePressure::setup(const PressureBox& box, const std::array<bool, 3>& periodic,
@@ -104,7 +105,7 @@ void HyprePressure::setup(const PressureBox& box, const std::array<bool, 3>& per
   }
   initialiseHypre();
   parallel::Environment& env = parallel::Environment::instance();
-  MPI_Comm comm = env.communicator();
+  MPI_Comm comm = own_ ? MPI_COMM_SELF : env.communicator();
   singular_ = true;
   for (bool d : dirichlet) singular_ = singular_ && !d;
 
@@ -185,7 +186,7 @@ void HyprePressure::setup(const PressureBox& box, const std::array<bool, 3>& per
         v[0] = d > 0.0 ? d : 1.0;
         active += d > 0.0 ? 1.0 : 0.0;
       }
-  activeCells_ = env.sum(active);
+  activeCells_ = own_ ? active : env.sum(active);
   HYPRE_Int entries[kEntries] = {0, 1, 2, 3, 4, 5, 6};
   check(HYPRE_StructMatrixSetBoxValues(h.A, h.lower.data(), h.upper.data(), kEntries, entries, values_.data()),
         "StructMatrixSetBoxValues");
@@ -206,6 +207,7 @@ void HyprePressure::setup(const PressureBox& box, const std::array<bool, 3>& per
   HYPRE_StructPFMGSetNumPreRelax(h.pfmg, 1);
   HYPRE_StructPFMGSetNumPostRelax(h.pfmg, 1);
   h.gauge = singular_;
+  h.own = own_;
   h.diag = &diag_;
   h.activeCells = activeCells_;
   h.scratch.resize(cells);
@@ -228,14 +230,14 @@ PoissonResult HyprePressure::solve(std::vector<double>& x, const std::vector<dou
     if (activeCells_ == 0.0) return;
     double local = 0.0;
     for (std::size_t c = 0; c < cells; ++c) local += diag_[c] > 0.0 ? v[c] : 0.0;
-    const double mean = env.sum(local) / activeCells_;
+    const double mean = (own_ ? local : env.sum(local)) / activeCells_;
     for (std::size_t c = 0; c < cells; ++c) v[c] = diag_[c] > 0.0 ? v[c] - mean : 0.0;
   };
   for (std::size_t c = 0; c < cells; ++c) values_[c] = diag_[c] > 0.0 ? b[c] : 0.0;
   if (singular_) removeMean(values_);
   double local = 0.0;
   for (double v : values_) local += v * v;
-  if (env.sum(local) == 0.0) {
+  if ((own_ ? local : env.sum(local)) == 0.0) {
     std::fill(x.begin(), x.end(), 0.0);
     return result;
   }

@@ -31,7 +31,9 @@ struct PressureBox {
 
 class HyprePressure {
  public:
-  HyprePressure();
+  /// own = true: this process alone holds the whole grid (MPI_COMM_SELF: a solver that owns its
+  /// grid in a run of several ranks); false: the ranks of the run share it (MPI_COMM_WORLD).
+  explicit HyprePressure(bool own = false);
   ~HyprePressure();
   HyprePressure(const HyprePressure&) = delete;
   HyprePressure& operator=(const HyprePressure&) = delete;
@@ -56,6 +58,7 @@ class HyprePressure {
  private:
   struct Impl;  // hypre's handles (HYPRE_struct_ls.h stays out of this header)
   std::unique_ptr<Impl> impl_;
+  bool own_ = false;
   PressureBox box_;
   std::array<bool, 3> periodic_{false, false, false};
   bool singular_ = true;

@@ -513,7 +513,8 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
   // Jacobi-preconditioned BiCGStab (van der Vorst 1992) on the correction of u_c. The vectors
   // span the whole flat array (ghosts included) and are zero off the unknown faces, so every
   // vector operation is one contiguous loop.
-  if (unknownList_[c].empty()) {
+  // (no unknowns on any rank: a rank without any takes part in the others' reductions)
+  if (maxAcrossRanks(unknownList_[c].empty() ? 0.0 : 1.0) == 0.0) {
     if (predictor) uOld_[c].data() = u_[c].data();
     return 0;
   }

@@ -112,7 +112,8 @@ void jacobiSweepRows(const Field& x, Field& y, const double* B, const Row* rows,
 }  // namespace
 
 bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, double e1, double e2) {
-  if (uniformCoupling_ || twoD_ || bc_.periodic(2) || grid_.cells[2] < 2) return false;
+  // (a decomposed grid: loop by loop, its ghost fills exchange with the neighbour ranks)
+  if (uniformCoupling_ || twoD_ || bc_.periodic(2) || grid_.cells[2] < 2 || decomposition_->distributed()) return false;
   double offRatio = 0.0;
   for (int d = 0; d < 3; ++d) offRatio += 2.0 * mu_ / (grid_.spacing[d] * grid_.spacing[d]);
   offRatio /= rho_ * g0 / dt + offRatio;

@@ -9,6 +9,7 @@
 #include "core/reduction.hpp"
 #include "fluid/loops.hpp"
 #include "fluid/solver.hpp"
+#include "parallel/reductions.hpp"
 
 namespace gf::fluid {
 
@@ -19,12 +20,14 @@ inline double avg(const double* a, std::size_t i, std::ptrdiff_t s) { return 0.5
 int Solver::teamSize() const {
   // Members own >= 1500 cells (fewer: a barrier costs more than the member's work).
   const std::int64_t cells = grid_.interiorCellCount();
-  if (twoD_ || cells >= kSerialCellsBelow) return 1;
+  // (a decomposed grid: no plane teams; its ghost fills exchange with the neighbour ranks)
+  if (twoD_ || cells >= kSerialCellsBelow || decomposition_->distributed()) return 1;
   return static_cast<int>(std::max<std::int64_t>(
       1, std::min<std::int64_t>({gf::threadCount(), grid_.cells[2], cells / 1500})));
 }
 
 double Solver::maxDivergence() const {
+  const parallel::RankReductionScope ranks(*decomposition_);
   // Line by line; a maximum does not depend on the order.
   // The eps pair of the last step (epsStep_, epsOlder_): in a coupled run the coupler has
   // already replaced the coupling fields by those of the next step (eps^{n+2}, eps^{n+1}).
@@ -69,10 +72,12 @@ void Solver::balanceOutflow(double dt) {
   // Outlet faces take the predicted velocity of their inner neighbour (zero gradient).
   for (int a = 0; a < (twoD_ ? 2 : 3); ++a)
     for (int s = 0; s < 2; ++s) {
+      // (the domain's sides decide, the same on every rank; this rank's sides are set)
+      const BoundaryType domainType = bc_.domainSide(a, s);
+      anyOutflow = anyOutflow || domainType == BoundaryType::Outflow;
+      anyPressure = anyPressure || domainType == BoundaryType::PressureOutlet;
       const BoundaryType t = bc_.at(a, s).type;
       if (!isOutlet(t)) continue;
-      anyOutflow = anyOutflow || t == BoundaryType::Outflow;
-      anyPressure = anyPressure || t == BoundaryType::PressureOutlet;
       Field& u = u_[a];
       forEachBoundaryFace(a, s, [&](const int* face, const int* cell) {
         const std::size_t f = u.index(face[0], face[1], face[2]);
@@ -93,6 +98,7 @@ void Solver::balanceOutflow(double dt) {
     if (bc_.periodic(a)) continue;
     const double area = grid_.cellVolume() / grid_.spacing[a];
     for (int s = 0; s < 2; ++s) {
+      if (bc_.shared(a, s)) continue;
       const bool out = bc_.at(a, s).type == BoundaryType::Outflow;
       forEachBoundaryFace(a, s, [&](const int* face, const int* cell) {
         const double epsF = E[coupling_.voidFraction.index(cell[0], cell[1], cell[2])];
@@ -102,6 +108,7 @@ void Solver::balanceOutflow(double dt) {
       });
     }
   }
+  std::tie(net, outflowArea) = sumAcrossRanks(std::pair<double, double>{net, outflowArea});
   if (outflowArea <= 0.0) return;
   const double shift = -net / outflowArea;  // added to the outward velocity
   for (int a = 0; a < (twoD_ ? 2 : 3); ++a)
@@ -127,6 +134,12 @@ void Solver::project(double dt, double g0) {
     const int idx[3] = {i, j, k};
     const int n = grid_.cells[a];
     if (bc_.periodic(a) && idx[a] == n) return unknown_[a][u.index(i - (a == 0) * n, j - (a == 1) * n, k - (a == 2) * n)] != 0;
+    if (bc_.shared(a, 1) && idx[a] == n) {
+      // The upper rank's face 0 (a momentum unknown there unless a cell beside it is blocked).
+      int below[3] = {i, j, k};
+      below[a] = n - 1;
+      return !blocked(below[0], below[1], below[2]) && !blocked(i, j, k);
+    }
     if (unknown_[a][u.index(i, j, k)]) return true;
     if (idx[a] == 0 || idx[a] == n) {
       const int s = idx[a] == 0 ? 0 : 1;
@@ -175,7 +188,8 @@ void Solver::project(double dt, double g0) {
             // coupled(): a momentum unknown, or a boundary face (periodic duplicate, pressure outlet).
             const bool coefficient = unknown_[a][f] || (boundary && coupled(a, i, j, k));
             // Corrected: the last face of a periodic axis duplicates face 0.
-            const bool corrected = unknown_[a][f] || (boundary && !(along == n && periodic) && coupled(a, i, j, k));
+            const bool corrected =
+                unknown_[a][f] || (boundary && !(along == n && (periodic || bc_.shared(a, 1))) && coupled(a, i, j, k));
             pressureFaces_[a][f] = static_cast<std::uint8_t>((coefficient ? 1 : 0) | (corrected ? 2 : 0));
           }
     }
@@ -189,7 +203,7 @@ void Solver::project(double dt, double g0) {
       if (a < dims) T[a].resize(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2]);
       else T[a].assign(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2], 0.0);
       if (a < dims)
-        for (int s = 0; s < 2; ++s) dirichlet[2 * a + s] = bc_.at(a, s).type == BoundaryType::PressureOutlet;
+        for (int s = 0; s < 2; ++s) dirichlet[2 * a + s] = bc_.domainSide(a, s) == BoundaryType::PressureOutlet;
     }
   const double V = grid_.cellVolume();
   inTeam(projectTeam_[0], [&](const PlaneSlab* slab) {
@@ -267,9 +281,14 @@ void Solver::project(double dt, double g0) {
     });
   });
   if (rebuild) {
-    std::array<bool, 3> periodic{bc_.periodic(0), bc_.periodic(1), bc_.periodic(2) && !twoD_};
-    if (hyprePressure_ && !hypre_) hypre_ = std::make_shared<HyprePressure>();
-    if (hypre_) hypre_->setup(PressureBox::whole(grid_.cells), periodic, T, dirichlet);
+    std::array<bool, 3> periodic{bc_.domainPeriodic(0), bc_.domainPeriodic(1), bc_.domainPeriodic(2) && !twoD_};
+    // (a solver that owns its whole grid keeps hypre to its own process)
+    if (hyprePressure_ && !hypre_) hypre_ = std::make_shared<HyprePressure>(!decomposition_->distributed());
+    if (hypre_)
+      hypre_->setup(decomposition_->distributed()
+                        ? PressureBox{bc_.domainCells, decomposition_->cellOffset(), grid_.cells}
+                        : PressureBox::whole(grid_.cells),
+                    periodic, T, dirichlet);
     else poisson_.setup(grid_.cells, periodic, T, dirichlet);
     poissonKey_ = uniformCoupling_ ? timeCoeff : -1.0;
   }
@@ -394,8 +413,12 @@ void Solver::controlFlowRate(double dt, double g0) {
         flux += epsF * u(i, j, k);
         if (unknown_[a][u.index(i, j, k)]) epsSum += epsF;
       }
-  const double count = static_cast<double>(grid_.interiorCellCount());
-  if (epsSum <= 0.0 || list.empty()) return;
+  std::tie(flux, epsSum) = sumAcrossRanks(std::pair<double, double>{flux, epsSum});
+  double count = static_cast<double>(grid_.interiorCellCount());
+  if (decomposition_->distributed())
+    count = static_cast<double>(bc_.domainCells[0]) * bc_.domainCells[1] * bc_.domainCells[2];
+  // (no unknowns: epsSum = 0)
+  if (epsSum <= 0.0) return;
   const double delta = (bulkVelocity_ - flux / count) * count / epsSum;
   for (auto f : list) u.data()[f] += delta;
   fillVelocityGhosts(u, a, bc_, GhostMode::Full);

@@ -6,15 +6,18 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "io/stl_reader.hpp"
 #include "fluid/initial_condition.hpp"
 #include "fluid/loops.hpp"
 #include "fluid/solid_mesh.hpp"
+#include "parallel/reductions.hpp"
 
 namespace gf::fluid {
 
@@ -23,7 +26,8 @@ int axisFromName(const std::string& s) { return s == "x" ? 0 : (s == "y" ? 1 : 2
 constexpr const char* kComponentNames[3] = {"velocity_x", "velocity_y", "velocity_z"};
 }  // namespace
 
-Solver::Solver(Params& root, const Domain& domain, const Vec3& gravity) : domain_(domain), gravity_(gravity) {
+Solver::Solver(Params& root, const Domain& domain, const Vec3& gravity, const parallel::Decomposition& decomposition)
+    : decomposition_(std::make_shared<const parallel::Decomposition>(decomposition)), domain_(domain), gravity_(gravity) {
   Params fluid = root.section({"fluid", "-", "incompressible (volume-averaged) Navier-Stokes solver"});
   readParams(fluid, domain);
   coupling_ = CouplingFields(grid_);
@@ -74,6 +78,29 @@ void Solver::readParams(Params& fluid, const Domain& domain) {
     grid_.spacing[a] = (domain.max[a] - domain.min[a]) / grid_.cells[a];
   }
   twoD_ = grid_.cells[2] == 1;
+  const std::array<int, 3> globalCells = grid_.cells;
+  const parallel::Decomposition& given = *decomposition_;
+  if (given.distributed() && !fluid.documenting()) {
+    // This rank's box of cells (a layout without the grid's cuts: rebuilt with them).
+    try {
+      const parallel::Decomposition withCells(domain, given.layout(), given.ranks(), given.rank(), globalCells);
+      if (given.gridded()) {
+        for (int r = 0; r < given.ranks(); ++r)
+          if (given.cellOffset(r) != withCells.cellOffset(r) || given.cellCount(r) != withCells.cellCount(r))
+            throw std::invalid_argument("the decomposition was built for another grid than fluid.cells");
+      } else {
+        decomposition_ = std::make_shared<const parallel::Decomposition>(withCells);
+      }
+    } catch (const std::invalid_argument& e) {
+      fluid.fail("cells", fmt::format("[{}, {}, {}] on {} ranks ({})", globalCells[0], globalCells[1], globalCells[2],
+                                      given.ranks(), e.what()),
+                 "a grid that the decomposition " + given.describe() + " splits");
+    }
+    for (int a = 0; a < 3; ++a) {
+      grid_.cells[a] = decomposition_->cellCount()[a];
+      grid_.origin[a] = domain.min[a] + decomposition_->cellOffset()[a] * grid_.spacing[a];
+    }
+  }
   model_ = fluid.choice({"model", "-", "volume-averaged momentum form: A (-eps grad p) or B (-grad p)"}, {"A", "B"}, "A") ==
                    "A"
                ? MomentumModel::A
@@ -96,6 +123,14 @@ void Solver::readParams(Params& fluid, const Domain& domain) {
                        "hypre: hypre's structured PCG preconditioned by PFMG (the solver of a run on several MPI "
                        "ranks; initialises MPI)"},
                       {"multigrid", "hypre"}, "multigrid") == "hypre";
+  if (decomposition_->distributed() && !hyprePressure_) {
+    // The multigrid works on a whole grid: a decomposed grid's pressure goes through hypre.
+    hyprePressure_ = true;
+    if (decomposition_->rank() == 0)
+      spdlog::info("fluid.pressure.solver: multigrid works on one rank; the pressure of this run on {} ranks goes "
+                   "through hypre",
+                   decomposition_->ranks());
+  }
   pressureTolerance_ = pressure.real({"tolerance", "-", "relative residual ||b - A x|| / ||b||", Range::positive()}, 1e-8);
   pressureMaxIterations_ =
       static_cast<int>(pressure.integer({"max_iterations", "-", "iteration cap", Range::atLeast(1)}, 200));
@@ -126,6 +161,7 @@ void Solver::readParams(Params& fluid, const Domain& domain) {
 
   std::array<bool, 3> periodic = domain.periodic;
   bc_ = Boundaries::read(fluid, periodic, twoD_);
+  if (decomposition_->distributed()) bc_.decompose(decomposition_, domain.min, globalCells);
 }
 
 void Solver::markBlocked(Params& fluid) {
@@ -157,9 +193,16 @@ void Solver::markBlocked(Params& fluid) {
         b.fail("file", "'" + file + "'", std::string("a readable STL file (") + e.what() + ")");
       }
     }
-    for (int k = 0; k < grid_.cells[2]; ++k)
-      for (int j = 0; j < grid_.cells[1]; ++j)
-        for (int i = 0; i < grid_.cells[0]; ++i) {
+    // (on a decomposed grid also the ghost cells across shared sides: the faces on a cut and the
+    // stencils next to it see the neighbour's blocked cells)
+    int first[3], end[3];
+    for (int a = 0; a < 3; ++a) {
+      first[a] = bc_.shared(a, 0) ? -grid_.ghosts : 0;
+      end[a] = grid_.cells[a] + (bc_.shared(a, 1) ? grid_.ghosts : 0);
+    }
+    for (int k = first[2]; k < end[2]; ++k)
+      for (int j = first[1]; j < end[1]; ++j)
+        for (int i = first[0]; i < end[0]; ++i) {
           const Vec3 x = grid_.cellCentre(i, j, k);
           bool inside;
           if (shape == "box") {
@@ -193,9 +236,10 @@ void Solver::buildUnknownMasks() {
           const int idx[3] = {i, j, k};
           const int f = idx[c];
           if (f == n) continue;
-          if (f == 0 && !bc_.periodic(c)) continue;
+          // (face 0 across a shared side is this rank's; face n there is the upper rank's face 0)
+          if (f == 0 && bc_.physical(c, 0)) continue;
           int lo[3] = {i, j, k};
-          lo[c] = f == 0 ? n - 1 : f - 1;
+          lo[c] = f == 0 ? (bc_.periodic(c) ? n - 1 : -1) : f - 1;
           if (blocked_[p_.index(lo[0], lo[1], lo[2])] || (f < n && blocked_[p_.index(i, j, k)])) continue;
           const std::size_t id = u.index(i, j, k);
           unknown_[c][id] = 1;
@@ -288,6 +332,7 @@ void Solver::setScalar(const std::function<double(const Vec3&)>& f) {
 
 void Solver::step(double dt) {
   ScopedPhase timer(timers_, Phase::Fluid);
+  const parallel::RankReductionScope ranks(*decomposition_);
   const SerialFluidScope serial(grid_.interiorCellCount() < kSerialCellsBelow);
   bc_.time = time_ + dt;  // prescribed (ramped) boundary velocities at the new time level
   bc_.voidFraction = &coupling_.voidFraction;  // (the solver may have been moved)
@@ -310,6 +355,8 @@ void Solver::step(double dt) {
   });
   bool uniform = true;
   for (std::uint8_t u : chunkUniform) uniform = uniform && u != 0;
+  // (on every rank: the solvers' paths, and their reductions, depend on it)
+  if (decomposition_->distributed()) uniform = maxAcrossRanks(uniform ? 0.0 : 1.0) == 0.0;
   uniformCoupling_ = uniform;
   if (steps_ == 0) {
     epsOlder_ = coupling_.voidFractionOld;
@@ -369,6 +416,7 @@ void Solver::step(double dt) {
 }
 
 double Solver::stableTimeStep() const {
+  const parallel::RankReductionScope ranks(*decomposition_);
   const int nx = grid_.cells[0], ny = grid_.cells[1], nz = grid_.cells[2];
   double rate = 0.0;
   for (int k = 0; k < nz; ++k)
@@ -382,6 +430,7 @@ double Solver::stableTimeStep() const {
         }
         rate = std::max(rate, r);
       }
+  rate = maxAcrossRanks(rate);
   return rate > 0.0 ? cfl_ / rate : std::numeric_limits<double>::max();
 }
 
@@ -426,8 +475,8 @@ void Solver::pressureGradient(Field out[3], CellGhosts ghosts) const {
       // central difference with the mirrored value would halve it, e.g. the hydrostatic gradient,
       // i.e. the buoyancy of particles in the cells next to a wall). Pressure-outlet ghosts are
       // Dirichlet images and keep the central difference.
-      const bool mirrorLow = !bc_.periodic(c) && bc_.at(c, 0).type != BoundaryType::PressureOutlet;
-      const bool mirrorHigh = !bc_.periodic(c) && bc_.at(c, 1).type != BoundaryType::PressureOutlet;
+      const bool mirrorLow = bc_.physical(c, 0) && bc_.at(c, 0).type != BoundaryType::PressureOutlet;
+      const bool mirrorHigh = bc_.physical(c, 1) && bc_.at(c, 1).type != BoundaryType::PressureOutlet;
       // Raw pointers and a line's base index hoisted; the three differences computed and one
       // selected (the same value as the branches it replaces: every neighbour index is inside the
       // ghost layers; no FP trap is enabled), so the 2-cell lines of a thin bed do not mispredict.

@@ -31,6 +31,7 @@
 #include "fluid/hypre_pressure.hpp"
 #include "fluid/multigrid.hpp"
 #include "fluid/team_tuner.hpp"
+#include "parallel/decomposition.hpp"
 
 namespace gf::fluid {
 
@@ -62,9 +63,20 @@ struct StepStatistics {
 
 class Solver {
  public:
-  Solver(Params& root, const Domain& domain, const Vec3& gravity);
+  /// decomposition: the ranks' layout when the grid is split among MPI ranks (this rank's grid is
+  /// its box: Decomposition::cellOffset/cellCount of fluid.cells). One rank (the default): the
+  /// whole grid, the single-process solver. A decomposition of several ranks built without the
+  /// grid's cells is rebuilt here with them (same layout); one built with other cells is refused.
+  /// On several ranks the pressure goes through hypre (fluid.pressure.solver: multigrid is
+  /// switched to hypre with a notice), ghost layers are exchanged with the neighbour ranks
+  /// (parallel/halo.hpp) and the solvers' reductions are allreduces (parallel/reductions.hpp).
+  Solver(Params& root, const Domain& domain, const Vec3& gravity,
+         const parallel::Decomposition& decomposition = parallel::Decomposition());
 
+  /// This rank's grid (the whole grid on one rank): origin, spacing, cells of its box.
   const CartesianGrid& grid() const { return grid_; }
+  /// The ranks' layout this solver works on (one rank: the whole grid).
+  const parallel::Decomposition& decomposition() const { return *decomposition_; }
   CouplingFields& couplingFields() { return coupling_; }
   const CouplingFields& couplingFields() const { return coupling_; }
 
@@ -166,6 +178,7 @@ class Solver {
   void advanceScalar(double dt);
 
   CartesianGrid grid_;
+  std::shared_ptr<const parallel::Decomposition> decomposition_;  // (shared with bc_: survives moves)
   Domain domain_;
   Vec3 gravity_;
   Boundaries bc_;

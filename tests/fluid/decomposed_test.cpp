@@ -1,0 +1,161 @@
+// The fluid solver on a grid split among MPI ranks (Solver with a parallel::Decomposition): each
+// rank steps its box of cells, exchanging ghost layers with its neighbours, with the pressure
+// through hypre and the Krylov reductions as allreduces. ctest runs this under mpirun -n 2 and
+// -n 4 with every layout of that rank count; each rank also runs the whole grid alone (a solver
+// without decomposition, hypre on its own process) and compares its box with it, point by point:
+// velocity, pressure and scalar agree to 1e-10 of the largest value after the steps (the solvers'
+// tolerances are tight, so only round-off in the order of the reductions separates the runs).
+// Cases: the lid-driven cavity (3D), a periodic channel at a prescribed flow rate with a blocked
+// box, a parabolic inlet to a pressure outlet with a passive scalar, and the volume-averaged
+// equations with a void fraction, drag coefficient and force density varying in space
+// (superficial inlet, outflow). On one process the decomposition has one rank: the solver is the
+// single-process one.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "fluid_test_util.hpp"
+#include "parallel/decomposition.hpp"
+#include "parallel/environment.hpp"
+
+namespace gf::fluid {
+namespace {
+
+using parallel::Decomposition;
+using parallel::Layout;
+
+/// Layouts of the rank count of this run (one rank: the whole grid).
+std::vector<Layout> layoutsFor(int ranks) {
+  if (ranks == 2) return {{2, 1, 1}, {1, 2, 1}, {1, 1, 2}};
+  if (ranks == 4) return {{2, 2, 1}, {1, 2, 2}, {2, 1, 2}, {4, 1, 1}};
+  return {{ranks, 1, 1}};
+}
+
+/// The coupling fields of the void-fraction case, as functions of position (both runs alike).
+void setCoupling(Solver& s, double t) {
+  CouplingFields& cf = s.couplingFields();
+  const CartesianGrid& g = s.grid();
+  for (int k = 0; k < g.cells[2]; ++k)
+    for (int j = 0; j < g.cells[1]; ++j)
+      for (int i = 0; i < g.cells[0]; ++i) {
+        const Vec3 x = g.cellCentre(i, j, k);
+        const double wave = std::sin(2.0 * x.x + 3.0 * x.y - t) * std::cos(2.5 * x.z);
+        cf.voidFractionOld(i, j, k) = cf.voidFraction(i, j, k);
+        cf.voidFraction(i, j, k) = 0.7 + 0.2 * wave;
+        cf.dragCoefficient(i, j, k) = 50.0 * (1.0 + wave * wave);
+        cf.forceDensity[0](i, j, k) = 20.0 * wave;
+        cf.forceDensity[1](i, j, k) = -5.0 * x.x;
+        cf.forceDensity[2](i, j, k) = 0.0;
+        cf.particleVelocity[0](i, j, k) = 0.1 * wave;
+        cf.particleVelocity[1](i, j, k) = 0.05;
+        cf.particleVelocity[2](i, j, k) = 0.0;
+      }
+}
+
+double maxAbs(const Field& f) {
+  double m = 0.0;
+  const auto& pts = f.points();
+  for (int k = 0; k < pts[2]; ++k)
+    for (int j = 0; j < pts[1]; ++j)
+      for (int i = 0; i < pts[0]; ++i) m = std::max(m, std::abs(f(i, j, k)));
+  return m;
+}
+
+/// Largest |local - whole| over this rank's interior points (its box of the whole grid's points),
+/// relative to the largest |whole|.
+double relativeDifference(const Field& local, const Field& whole, const std::array<int, 3>& offset) {
+  double m = 0.0;
+  const auto& pts = local.points();
+  for (int k = 0; k < pts[2]; ++k)
+    for (int j = 0; j < pts[1]; ++j)
+      for (int i = 0; i < pts[0]; ++i)
+        m = std::max(m, std::abs(local(i, j, k) - whole(offset[0] + i, offset[1] + j, offset[2] + k)));
+  const double scale = maxAbs(whole);
+  return scale > 0.0 ? m / scale : m;
+}
+
+/// Steps the case on this rank's box of each layout and alone on the whole grid; checks they agree.
+void compareDecomposed(const std::string& yaml, int steps, double dt, bool coupled) {
+  const parallel::Environment& env = parallel::Environment::instance();
+  const std::string tight = "  momentum_tolerance: 1.0e-13\n  momentum_max_iterations: 400\n"
+                            "  pressure: {solver: hypre, tolerance: 1.0e-13, max_iterations: 500}\n";
+  const std::string text = yaml + tight;
+  auto whole = test::makeCase(text);
+  for (int n = 0; n < steps; ++n) {
+    if (coupled) setCoupling(*whole.solver, n * dt);
+    whole.solver->step(dt);
+  }
+  for (const Layout& layout : layoutsFor(env.size())) {
+    Params params = Params::loadString(text, "test.yaml");
+    const Domain domain = Domain::read(params);
+    const Decomposition layoutOnly(domain, layout, env.size(), env.rank());  // (the solver adds the grid's cuts)
+    Solver solver(params, domain, Vec3{}, layoutOnly);
+    const Decomposition& d = solver.decomposition();
+    ASSERT_EQ(d.layout(), layout);
+    for (int n = 0; n < steps; ++n) {
+      if (coupled) setCoupling(solver, n * dt);
+      solver.step(dt);
+    }
+    const auto offset = d.cellOffset();
+    double worst = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double diff = relativeDifference(solver.velocity(c), whole.solver->velocity(c), offset);
+      EXPECT_LT(diff, 1e-10) << "velocity " << c << ", rank " << env.rank() << " of layout " << d.describe();
+      worst = std::max(worst, diff);
+    }
+    const double pdiff = relativeDifference(solver.pressure(), whole.solver->pressure(), offset);
+    EXPECT_LT(pdiff, 1e-10) << "pressure, rank " << env.rank() << " of layout " << d.describe();
+    if (solver.hasScalar()) {
+      EXPECT_LT(relativeDifference(solver.scalar(), whole.solver->scalar(), offset), 1e-10)
+          << "scalar, rank " << env.rank() << " of layout " << d.describe();
+    }
+    EXPECT_NEAR(solver.drivingPressureGradient(), whole.solver->drivingPressureGradient(),
+                1e-10 * std::max(1.0, std::abs(whole.solver->drivingPressureGradient())));
+    // The time step estimate and the divergence are global maxima: the same on every rank.
+    EXPECT_NEAR(solver.stableTimeStep(), whole.solver->stableTimeStep(), 1e-10 * whole.solver->stableTimeStep());
+    if (env.rank() == 0)
+      std::printf("layout %s: velocity %.1e, pressure %.1e of the largest value\n", d.describe().c_str(), worst, pdiff);
+  }
+}
+
+TEST(DecomposedFluid, CavityMatchesTheWholeGrid) {
+  const std::string yaml = "domain: {min: [0, 0, 0], max: [1, 1, 1]}\n"
+                           "fluid:\n  density: 1\n  viscosity: 0.01\n  cells: [12, 12, 12]\n"
+                           "  boundaries:\n    y_max: {type: wall, velocity: [1, 0, 0.3]}\n";
+  compareDecomposed(yaml, 6, 0.02, false);
+}
+
+TEST(DecomposedFluid, PeriodicChannelAtAFlowRateMatchesTheWholeGrid) {
+  const std::string yaml = "domain: {min: [0, 0, 0], max: [2, 1, 1], periodic: [1, 0, 1]}\n"
+                           "fluid:\n  density: 1\n  viscosity: 0.01\n  cells: [16, 12, 12]\n  model: B\n"
+                           "  blocked: [{shape: box, min: [0.8, 0.3, 0.3], max: [1.2, 0.6, 0.7]}]\n"
+                           "  driving: {mode: flow_rate, axis: x, bulk_velocity: 1.0}\n"
+                           "  initial: {velocity: [1, 0.1, 0.05]}\n";
+  compareDecomposed(yaml, 6, 0.02, false);
+}
+
+TEST(DecomposedFluid, InletToPressureOutletMatchesTheWholeGrid) {
+  const std::string yaml = "domain: {min: [0, 0, 0], max: [3, 1, 1]}\n"
+                           "fluid:\n  density: 1\n  viscosity: 0.02\n  cells: [16, 12, 12]\n  convection: central\n"
+                           "  blocked: [{shape: box, min: [1, 0.25, 0.25], max: [1.5, 0.75, 0.75]}]\n"
+                           "  boundaries:\n"
+                           "    x_min: {type: inlet, velocity: [1, 0, 0], profile: parabolic, scalar: fixed, scalar_value: 1}\n"
+                           "    x_max: {type: pressure_outlet, pressure: 0}\n"
+                           "  scalar: {enabled: true, diffusivity: 0.01}\n";
+  compareDecomposed(yaml, 6, 0.02, false);
+}
+
+TEST(DecomposedFluid, VoidFractionDragAndForceMatchTheWholeGrid) {
+  const std::string yaml = "domain: {min: [0, 0, 0], max: [1, 2, 1], periodic: [1, 0, 0]}\n"
+                           "fluid:\n  density: 1000\n  viscosity: 0.001\n  cells: [12, 16, 12]\n"
+                           "  boundaries:\n    y_min: {type: inlet, velocity: [0, 0.1, 0]}\n"
+                           "    y_max: {type: outflow}\n";
+  compareDecomposed(yaml, 6, 0.01, true);
+}
+
+}  // namespace
+}  // namespace gf::fluid
