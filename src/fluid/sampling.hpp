@@ -1,7 +1,13 @@
 #pragma once
 // Derived fluid quantities sampled by monitors (and tests): plane averages, flow rates,
 // kinetic energy, point probes, profiles along a line.
+//
+// On a decomposed grid (Solver::decomposition() of several ranks) every function is collective:
+// all ranks call it and get the value of the whole domain (sums and extrema across the ranks; a
+// point value from the rank that owns the point's lower interpolation cell, whose upper
+// neighbours may be its ghost cells). On one rank: the local loops alone.
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "fluid/solver.hpp"
@@ -29,5 +35,19 @@ struct LineProfile {
   std::vector<double> voidFraction;              // -
 };
 LineProfile lineProfile(const Solver& s, int axis, const Vec3& point);
+
+/// The combination of this rank's part with the other ranks' (collective on a decomposed grid;
+/// the local value on one rank), for the monitors' own sums and extrema.
+double sumOverRanks(const Solver& s, double local);
+std::pair<double, double> sumOverRanks(const Solver& s, std::pair<double, double> local);
+double maxOverRanks(const Solver& s, double local);
+double minOverRanks(const Solver& s, double local);
+/// Along `axis`: this rank's local index of global cell (or face) index `global`.
+inline int localIndex(const Solver& s, int axis, int global) { return global - s.cellOffset()[axis]; }
+/// Whether global cell index `global` along `axis` lies in this rank's box.
+inline bool ownsCellAlong(const Solver& s, int axis, int global) {
+  const int l = localIndex(s, axis, global);
+  return l >= 0 && l < s.grid().cells[axis];
+}
 
 }  // namespace gf::fluid

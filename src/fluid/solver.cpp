@@ -79,6 +79,7 @@ void Solver::readParams(Params& fluid, const Domain& domain) {
   }
   twoD_ = grid_.cells[2] == 1;
   const std::array<int, 3> globalCells = grid_.cells;
+  globalGrid_ = grid_;
   const parallel::Decomposition& given = *decomposition_;
   if (given.distributed() && !fluid.documenting()) {
     // This rank's box of cells (a layout without the grid's cuts: rebuilt with them).

@@ -77,6 +77,11 @@ class Solver {
   const CartesianGrid& grid() const { return grid_; }
   /// The ranks' layout this solver works on (one rank: the whole grid).
   const parallel::Decomposition& decomposition() const { return *decomposition_; }
+  /// The whole domain's grid (one rank: grid()); this rank's box starts at cell cellOffset() of it.
+  const CartesianGrid& globalGrid() const { return globalGrid_; }
+  std::array<int, 3> cellOffset() const {
+    return decomposition_->distributed() ? decomposition_->cellOffset() : std::array<int, 3>{0, 0, 0};
+  }
   CouplingFields& couplingFields() { return coupling_; }
   const CouplingFields& couplingFields() const { return coupling_; }
 
@@ -179,6 +184,7 @@ class Solver {
 
   CartesianGrid grid_;
   std::shared_ptr<const parallel::Decomposition> decomposition_;  // (shared with bc_: survives moves)
+  CartesianGrid globalGrid_;
   Domain domain_;
   Vec3 gravity_;
   Boundaries bc_;

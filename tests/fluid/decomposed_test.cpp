@@ -8,8 +8,9 @@
 // Cases: the lid-driven cavity (3D), a periodic channel at a prescribed flow rate with a blocked
 // box, a parabolic inlet to a pressure outlet with a passive scalar, and the volume-averaged
 // equations with a void fraction, drag coefficient and force density varying in space
-// (superficial inlet, outflow). On one process the decomposition has one rank: the solver is the
-// single-process one.
+// (superficial inlet, outflow). The monitors' samples (kinetic energy, plane means, flow rates
+// through planes on and off the cuts, probes, line profiles) agree as well. On one process the
+// decomposition has one rank: the solver is the single-process one.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "fluid/sampling.hpp"
 #include "fluid_test_util.hpp"
 #include "parallel/decomposition.hpp"
 #include "parallel/environment.hpp"
@@ -63,6 +65,10 @@ double maxAbs(const Field& f) {
     for (int j = 0; j < pts[1]; ++j)
       for (int i = 0; i < pts[0]; ++i) m = std::max(m, std::abs(f(i, j, k)));
   return m;
+}
+
+double velocityScale(const Solver& s) {
+  return std::max({maxAbs(s.velocity(0)), maxAbs(s.velocity(1)), maxAbs(s.velocity(2))});
 }
 
 /// Largest |local - whole| over this rank's interior points (its box of the whole grid's points),
@@ -117,6 +123,34 @@ void compareDecomposed(const std::string& yaml, int steps, double dt, bool coupl
                 1e-10 * std::max(1.0, std::abs(whole.solver->drivingPressureGradient())));
     // The time step estimate and the divergence are global maxima: the same on every rank.
     EXPECT_NEAR(solver.stableTimeStep(), whole.solver->stableTimeStep(), 1e-10 * whole.solver->stableTimeStep());
+    EXPECT_NEAR(solver.maxDivergence(), whole.solver->maxDivergence(), 1e-8 * velocityScale(*whole.solver));
+    // The monitors' samples (collective): the whole domain's values on every rank.
+    const Solver& w = *whole.solver;
+    const Domain& dom = domain;
+    auto expectSame = [&](double got, double want, double scale, const char* what) {
+      EXPECT_NEAR(got, want, 1e-10 * std::max(scale, std::abs(want))) << what << ", layout " << d.describe();
+    };
+    expectSame(kineticEnergy(solver), kineticEnergy(w), 0.0, "kinetic energy");
+    const double pScale = maxAbs(w.pressure()), uScale = velocityScale(w);
+    for (int a = 0; a < 3; ++a) {
+      const double length = dom.max[a] - dom.min[a];
+      for (double at : {0.0, 0.41, 0.5, 1.0}) {
+        const double x = dom.min[a] + at * length;
+        expectSame(planeMeanPressure(solver, a, x), planeMeanPressure(w, a, x), pScale, "plane mean pressure");
+        expectSame(flowRate(solver, a, x), flowRate(w, a, x), uScale * length * length, "flow rate");
+      }
+      const Vec3 through{dom.min.x + 0.52 * (dom.max.x - dom.min.x), dom.min.y + 0.47 * (dom.max.y - dom.min.y),
+                         dom.min.z + 0.5 * (dom.max.z - dom.min.z)};
+      const LineProfile got = lineProfile(solver, a, through), want = lineProfile(w, a, through);
+      ASSERT_EQ(got.position.size(), want.position.size());
+      for (std::size_t q = 0; q < want.position.size(); ++q) {
+        for (int c = 0; c < 3; ++c) expectSame(got.velocity[q][c], want.velocity[q][c], uScale, "profile velocity");
+        expectSame(got.pressure[q], want.pressure[q], pScale, "profile pressure");
+        expectSame(got.voidFraction[q], want.voidFraction[q], 1.0, "profile void fraction");
+      }
+      const auto p = probe(solver, through), q = probe(w, through);
+      for (int c = 0; c < 4; ++c) expectSame(p[c], q[c], c < 3 ? uScale : pScale, "probe");
+    }
     if (env.rank() == 0)
       std::printf("layout %s: velocity %.1e, pressure %.1e of the largest value\n", d.describe().c_str(), worst, pdiff);
   }

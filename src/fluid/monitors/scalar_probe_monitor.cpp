@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/monitor.hpp"
+#include "fluid/sampling.hpp"
 #include "fluid/solver.hpp"
 
 namespace gf::fluid {
@@ -32,10 +33,15 @@ class ScalarProbeMonitor final : public Monitor {
           lo = std::min(lo, c(i, j, k));
           hi = std::max(hi, c(i, j, k));
         }
-    const auto cell = g.cellOf(point_);
-    const int i = std::clamp(cell[0], 0, g.cells[0] - 1), j = std::clamp(cell[1], 0, g.cells[1] - 1),
-              k = std::clamp(cell[2], 0, g.cells[2] - 1);
-    return {c(i, j, k), lo, hi};
+    // (the point's cell of the whole grid, from the rank that holds it; extrema across the ranks)
+    const CartesianGrid& G = f.globalGrid();
+    const auto cell = G.cellOf(point_);
+    const int i = std::clamp(cell[0], 0, G.cells[0] - 1), j = std::clamp(cell[1], 0, G.cells[1] - 1),
+              k = std::clamp(cell[2], 0, G.cells[2] - 1);
+    if (!f.decomposition().distributed()) return {c(i, j, k), lo, hi};
+    const bool mine = ownsCellAlong(f, 0, i) && ownsCellAlong(f, 1, j) && ownsCellAlong(f, 2, k);
+    const double value = mine ? c(localIndex(f, 0, i), localIndex(f, 1, j), localIndex(f, 2, k)) : 0.0;
+    return {sumOverRanks(f, value), minOverRanks(f, lo), maxOverRanks(f, hi)};
   }
 
  private:
