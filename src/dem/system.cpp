@@ -33,6 +33,16 @@ System::System(Params& root, const Domain& domain, const Vec3& gravity, InitialP
       {"reorder_interval", "-", "Morton (space-filling curve) reordering every this many rebuilds (0: never)",
        Range::atLeast(0)},
       20));
+  Params par = root.section({"parallel", "-", "MPI runs: load balancing of the particles among the ranks"});
+  balance_.threshold = par.real({"rebalance_threshold", "-",
+                                 "re-cut the ranks' boxes (recursive coordinate bisection) when the largest number of "
+                                 "particles a rank owns exceeds this times the mean (DEM-only cases)",
+                                 Range::atLeast(1.0)},
+                                1.2);
+  balance_.interval = par.integer(
+      {"rebalance_interval", "-", "check the balance at the first list build after every this many steps (0: never)",
+       Range::atLeast(0)},
+      1000);
   if (root.documenting()) return;
   updateWalls();
   // A restart skips the initial insertion: load() would discard its particles (a random packing of

@@ -38,6 +38,14 @@ struct NeighbourSettings {
   int reorderInterval = 20;   // Morton reordering every this many rebuilds (0 = never)
 };
 
+/// Load balancing under MPI (case section `parallel`): at the first list build on or after every
+/// `interval` steps, when max/mean of the particles the ranks own exceeds `threshold`, the boxes
+/// are cut again by recursive coordinate bisection (parallel/rebalance.hpp).
+struct BalanceSettings {
+  double threshold = 1.2;
+  long long interval = 1000;  // steps; 0 = never
+};
+
 struct ContactStatistics {
   long long particleContacts = 0;   // touching particle pairs
   long long wallContacts = 0;       // touching particle-wall primitive pairs
@@ -173,6 +181,10 @@ class System {
                                const std::vector<std::uint8_t>& rowsToSet);
   std::vector<PairHistoryRecord> pairRecords(const std::vector<std::uint8_t>& ofParticle) const;
   std::vector<WallHistoryRecord> wallRecords(const std::vector<std::uint8_t>& ofParticle) const;
+  /// Load balancing (system_rebalance.cpp): at a list build due for a check (BalanceSettings),
+  /// new boxes for the owned particles of `order` when they are out of balance. Returns whether
+  /// decomposition_ changed (the migration that follows then sends to any rank).
+  bool rebalanceIfDue(const std::vector<std::uint32_t>& order, double reach);
   /// Largest two displacements since the last build of the particles this rank owns, over all ranks.
   std::pair<double, double> ownedLargestMoves() const;
 
@@ -183,6 +195,9 @@ class System {
   // the owned particles sent to it as ghosts and of the ghosts received from it, in message order.
   std::vector<std::vector<std::uint32_t>> ghostSend_, ghostReceive_;
   double ghostReach_ = 0.0;
+  BalanceSettings balance_;
+  long long balanceChecks_ = -1;  // the last interval (steps_ / balance_.interval) checked
+  bool balanceNoticeGiven_ = false;
   // Particles that arrived at the last migration (per index, 1 = arrived) and the contact
   // histories they brought: set on their list entries after the build.
   std::vector<std::uint8_t> arrived_;

@@ -221,12 +221,16 @@ void System::setHistoriesFromRecords(const std::vector<PairHistoryRecord>& pairs
 void System::migrateAndExchangeGhosts(const std::vector<std::uint32_t>& order, bool reorder, double mortonCell,
                                       double ghostReach, std::vector<std::int64_t>& previous, std::size_t listedRows) {
   ParticleSet& p = particles_;
+  // New boxes (a rebalancing, system_rebalance.cpp): the particles then go to any rank.
+  const bool anywhere = rebalanceIfDue(order, ghostReach);
+  decomposition_.setReach(ghostReach);
   const std::vector<int>& neighbours = decomposition_.neighbourRanks();
   const int me = decomposition_.rank();
   // 1. Particles that left this rank's box go to the rank whose box holds them, with their contact
   //    histories; ghosts are dropped (sent again below).
   std::vector<std::uint32_t> stay;
-  std::vector<std::vector<std::uint32_t>> leave(neighbours.size());
+  std::vector<std::vector<std::uint32_t>> leave(anywhere ? static_cast<std::size_t>(decomposition_.ranks())
+                                                         : neighbours.size());
   std::vector<std::uint8_t> leaving(p.size(), 0);
   std::unordered_map<std::int64_t, std::uint32_t> formerIndex;  // former ghosts and leaving particles, by id
   for (std::uint32_t i : order) {
@@ -239,7 +243,7 @@ void System::migrateAndExchangeGhosts(const std::vector<std::uint32_t>& order, b
       stay.push_back(i);
       continue;
     }
-    const int slot = neighbourSlot(neighbours, owner);
+    const int slot = anywhere ? owner : neighbourSlot(neighbours, owner);
     if (slot < 0)
       throw DivergenceError(steps_, time_, "particle moved beyond the neighbouring ranks' boxes within one list build",
                             fmt::format("particle id {} (rank {} to rank {})", p.id[i], me, owner), p.position[i],
@@ -254,8 +258,8 @@ void System::migrateAndExchangeGhosts(const std::vector<std::uint32_t>& order, b
   (void)byParticle;
   std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a.a < b.a; });
   std::sort(walls.begin(), walls.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
-  std::vector<parallel::Bytes> send(neighbours.size());
-  for (std::size_t n = 0; n < neighbours.size(); ++n) {
+  std::vector<parallel::Bytes> send(leave.size());
+  for (std::size_t n = 0; n < leave.size(); ++n) {
     parallel::Packer out(send[n]);
     for (std::uint32_t i : leave[n]) {
       packParticle(p, i, out, true);
@@ -271,7 +275,8 @@ void System::migrateAndExchangeGhosts(const std::vector<std::uint32_t>& order, b
       for (auto it = wr.first; it != wr.second; ++it) out.put(*it);
     }
   }
-  const std::vector<parallel::Bytes> received = parallel::exchange(neighbours, send);
+  const std::vector<parallel::Bytes> received =
+      anywhere ? parallel::exchangeWithAny(send) : parallel::exchange(neighbours, send);
 
   // 2. The staying particles (in their order), then the arrivals.
   p.gather(stay);
@@ -317,6 +322,7 @@ void System::migrateAndExchangeGhosts(const std::vector<std::uint32_t>& order, b
 
 std::vector<std::uint32_t> System::exchangeGhosts(double reach) {
   ParticleSet& p = particles_;
+  decomposition_.setReach(reach);  // (explicit boxes: the neighbours within reach)
   const std::vector<int>& neighbours = decomposition_.neighbourRanks();
   ghostReach_ = reach;
   const std::size_t owned = p.size();

@@ -53,6 +53,95 @@ Decomposition::Decomposition(const Domain& domain, Layout layout, int ranks, int
   neighbours_.erase(std::unique(neighbours_.begin(), neighbours_.end()), neighbours_.end());
 }
 
+Decomposition::Decomposition(const Domain& domain, std::vector<Box> boxes, int rank, double reach)
+    : domain_(domain), layout_{static_cast<int>(boxes.size()), 1, 1}, rank_(rank), explicit_(true),
+      boxes_(std::move(boxes)) {
+  const int n = static_cast<int>(boxes_.size());
+  if (n < 1 || rank < 0 || rank >= n)
+    throw std::invalid_argument(fmt::format("decomposition: {} boxes for rank {}", n, rank));
+  // Tiling: every box inside the domain, no two overlapping, and their volumes adding up to the
+  // domain's (to round-off): then every position of the domain lies in exactly one box.
+  const Vec3 size = domain.size();
+  const double whole = size.x * size.y * size.z;
+  double volume = 0.0;
+  for (int r = 0; r < n; ++r) {
+    const Box& b = boxes_[static_cast<std::size_t>(r)];
+    for (int a = 0; a < 3; ++a)
+      if (!(b.lower[a] >= domain.min[a] && b.upper[a] <= domain.max[a] && b.lower[a] <= b.upper[a]))
+        throw std::invalid_argument(
+            fmt::format("decomposition: box of rank {} ([{}, {}] along {}) is not inside the domain", r, b.lower[a],
+                        b.upper[a], "xyz"[a]));
+    const Vec3 w = b.upper - b.lower;
+    volume += w.x * w.y * w.z;
+    for (int q = 0; q < r; ++q) {
+      const Box& c = boxes_[static_cast<std::size_t>(q)];
+      bool overlap = true;
+      for (int a = 0; a < 3; ++a) overlap = overlap && b.lower[a] < c.upper[a] && c.lower[a] < b.upper[a];
+      if (overlap) throw std::invalid_argument(fmt::format("decomposition: the boxes of ranks {} and {} overlap", q, r));
+    }
+  }
+  if (std::abs(volume - whole) > 1e-9 * whole)
+    throw std::invalid_argument(
+        fmt::format("decomposition: the boxes cover {:.6g} of the domain's volume, not all of it", volume / whole));
+  setReach(reach);
+}
+
+std::vector<Box> Decomposition::boxes() const {
+  if (explicit_) return boxes_;
+  std::vector<Box> all(static_cast<std::size_t>(ranks()));
+  for (int r = 0; r < ranks(); ++r) all[static_cast<std::size_t>(r)] = {lower(r), upper(r)};
+  return all;
+}
+
+void Decomposition::setReach(double reach) {
+  reach_ = reach;
+  if (!explicit_) return;
+  // Ranks whose boxes come within `reach` of this one along every axis: the gap between the two
+  // ranges, the smallest over the periodic images on periodic axes.
+  const Box& mine = boxes_[static_cast<std::size_t>(rank_)];
+  neighbours_.clear();
+  for (int r = 0; r < ranks(); ++r) {
+    if (r == rank_) continue;
+    const Box& other = boxes_[static_cast<std::size_t>(r)];
+    bool near = true;
+    for (int a = 0; a < 3 && near; ++a) {
+      auto gap = [&](double shift) {
+        return std::max({0.0, other.lower[a] + shift - mine.upper[a], mine.lower[a] - other.upper[a] - shift});
+      };
+      double g = gap(0.0);
+      if (domain_.periodic[a]) {
+        const double length = domain_.max[a] - domain_.min[a];
+        g = std::min({g, gap(-length), gap(length)});
+      }
+      near = g <= reach;
+    }
+    if (near) neighbours_.push_back(r);
+  }
+}
+
+int Decomposition::explicitOwnerOf(const Vec3& x) const {
+  // Positions outside the domain count as on its nearest face.
+  Vec3 y = x;
+  for (int a = 0; a < 3; ++a) y[a] = std::clamp(y[a], domain_.min[a], domain_.max[a]);
+  auto holds = [&](int r) {
+    const Box& b = boxes_[static_cast<std::size_t>(r)];
+    for (int a = 0; a < 3; ++a) {
+      const bool in = y[a] >= b.lower[a] && (y[a] < b.upper[a] || b.upper[a] == domain_.max[a]);
+      if (!in) return false;
+    }
+    return true;
+  };
+  // The boxes tile the domain, so one box holds y: this rank's and its neighbours' first (where
+  // the particles of a list build are), then all.
+  if (holds(rank_)) return rank_;
+  for (int r : neighbours_)
+    if (holds(r)) return r;
+  for (int r = 0; r < ranks(); ++r)
+    if (holds(r)) return r;
+  // (a box whose upper face is the domain's and whose neighbour across it is empty: none here)
+  return rank_;
+}
+
 Layout Decomposition::autoLayout(const Domain& domain, int ranks, std::array<int, 3> cells) {
   const Vec3 size = domain.size();
   const bool grid = cells[0] > 0 && cells[1] > 0 && cells[2] > 0;
@@ -101,6 +190,7 @@ std::array<int, 3> Decomposition::coordsOf(int rank) const {
 }
 
 int Decomposition::ownerOf(const Vec3& x) const {
+  if (explicit_) return explicitOwnerOf(x);
   std::array<int, 3> c{};
   for (int a = 0; a < 3; ++a) {
     const auto& cuts = cut_[a];
@@ -112,11 +202,13 @@ int Decomposition::ownerOf(const Vec3& x) const {
 }
 
 Vec3 Decomposition::lower(int rank) const {
+  if (explicit_) return boxes_[static_cast<std::size_t>(rank)].lower;
   const auto c = coordsOf(rank);
   return {cut(0, c[0]), cut(1, c[1]), cut(2, c[2])};
 }
 
 Vec3 Decomposition::upper(int rank) const {
+  if (explicit_) return boxes_[static_cast<std::size_t>(rank)].upper;
   const auto c = coordsOf(rank);
   return {cut(0, c[0] + 1), cut(1, c[1] + 1), cut(2, c[2] + 1)};
 }
@@ -138,12 +230,21 @@ std::array<int, 3> Decomposition::cellCount(int rank) const {
 }
 
 Side Decomposition::side(int axis, int dir) const {
+  if (explicit_) {
+    const Box& b = boxes_[static_cast<std::size_t>(rank_)];
+    const bool onDomainFace = dir < 0 ? b.lower[axis] == domain_.min[axis] : b.upper[axis] == domain_.max[axis];
+    if (!onDomainFace) return Side::Shared;
+    if (!domain_.periodic[axis]) return Side::Physical;
+    const bool whole = b.lower[axis] == domain_.min[axis] && b.upper[axis] == domain_.max[axis];
+    return whole ? Side::Periodic : Side::Shared;
+  }
   const int next = coords_[axis] + dir;
   if (next >= 0 && next < layout_[axis]) return Side::Shared;
   return domain_.periodic[axis] ? (layout_[axis] > 1 ? Side::Shared : Side::Periodic) : Side::Physical;
 }
 
 int Decomposition::neighbourAcross(int axis, int dir) const {
+  if (explicit_) return -1;
   std::array<int, 3> c = coords_;
   c[axis] += dir;
   return rankAt(c);
@@ -166,12 +267,22 @@ Vec3 Decomposition::distanceToBox(const Vec3& x, int rank) const {
 
 double Decomposition::smallestBoxWidth() const {
   double w = std::numeric_limits<double>::infinity();
+  if (explicit_) {
+    if (ranks() == 1) return w;
+    for (const Box& b : boxes_)
+      for (int a = 0; a < 3; ++a)
+        if (!(b.lower[a] == domain_.min[a] && b.upper[a] == domain_.max[a])) w = std::min(w, b.upper[a] - b.lower[a]);
+    return w;
+  }
   for (int a = 0; a < 3; ++a)
     if (layout_[a] > 1)
       for (int k = 0; k < layout_[a]; ++k) w = std::min(w, cut(a, k + 1) - cut(a, k));
   return w;
 }
 
-std::string Decomposition::describe() const { return fmt::format("{} x {} x {}", layout_[0], layout_[1], layout_[2]); }
+std::string Decomposition::describe() const {
+  if (explicit_) return fmt::format("{} boxes", ranks());
+  return fmt::format("{} x {} x {}", layout_[0], layout_[1], layout_[2]);
+}
 
 }  // namespace gf::parallel

@@ -11,6 +11,14 @@
 // bounded axis also holds its upper face), so ownership is a pure function of the position and
 // the same on every rank.
 //
+// A second form holds explicit boxes, one per rank (from a recursive coordinate bisection of the
+// particles: parallel/rebalance.hpp), which tile the domain. A position then belongs to the box
+// whose half-open ranges [lower, upper) hold it (a box's upper face on the domain's upper face
+// included), the neighbours are the ranks whose boxes come within a reach of this one (periodic
+// images included; setReach), and there is no grid and no single rank across a face. The DEM asks
+// both forms the same things (ownerOf, distanceToBox, neighbourRanks, smallestBoxWidth); the fluid
+// works on the Cartesian form only.
+//
 // Pure data and arithmetic: no MPI here (the verbs that move data are in this directory's other
 // files), so the layout can be built and tested for any rank count in one process.
 #include <array>
@@ -29,6 +37,11 @@ enum class Side { Physical, Periodic, Shared };
 /// The layout asked for in the case: {0, 0, 0} = auto.
 using Layout = std::array<int, 3>;
 
+/// An axis-aligned box [lower, upper).
+struct Box {
+  Vec3 lower, upper;
+};
+
 class Decomposition {
  public:
   /// One rank owning an empty domain (replace before use).
@@ -38,6 +51,10 @@ class Decomposition {
   /// Throws std::invalid_argument when the layout does not multiply to `ranks`, or an axis has
   /// more ranks than cells.
   Decomposition(const Domain& domain, Layout layout, int ranks, int rank, std::array<int, 3> cells = {0, 0, 0});
+  /// Explicit boxes, boxes[r] for rank r, for the rank `rank`; neighbours within `reach` (m).
+  /// Throws std::invalid_argument when the boxes do not tile the domain (a box outside it, two
+  /// boxes overlapping, or volumes that do not add up to the domain's).
+  Decomposition(const Domain& domain, std::vector<Box> boxes, int rank, double reach = 0.0);
 
   /// The layout with least halo surface for `ranks` ranks: among all px*py*pz = ranks with at most
   /// one rank per cell along each axis, the one whose cuts have the smallest total area (a cut
@@ -46,13 +63,23 @@ class Decomposition {
 
   const Domain& domain() const { return domain_; }
   const Layout& layout() const { return layout_; }
-  int ranks() const { return layout_[0] * layout_[1] * layout_[2]; }
+  /// Cartesian form: px x py x pz; explicit boxes: {ranks, 1, 1} (no layout).
+  int ranks() const { return explicit_ ? static_cast<int>(boxes_.size()) : layout_[0] * layout_[1] * layout_[2]; }
+  /// Whether this is the form of explicit boxes.
+  bool explicitBoxes() const { return explicit_; }
+  /// Every rank's box, indexed by rank (both forms).
+  std::vector<Box> boxes() const;
+  /// Explicit boxes: the neighbours become the ranks whose boxes come within `reach` of this one
+  /// (periodic images included); the Cartesian form keeps its 26 neighbours. Every rank must pass
+  /// the same reach (the neighbour lists then list each other).
+  void setReach(double reach);
+  double reach() const { return reach_; }
   int rank() const { return rank_; }
   bool distributed() const { return ranks() > 1; }
-  /// This rank's position in the layout.
+  /// This rank's position in the layout (Cartesian form; {0, 0, 0} for explicit boxes).
   const std::array<int, 3>& coords() const { return coords_; }
 
-  /// Rank at layout coordinates c; periodic axes wrap, -1 beyond a bounded axis.
+  /// Rank at layout coordinates c; periodic axes wrap, -1 beyond a bounded axis (Cartesian form).
   int rankAt(std::array<int, 3> c) const;
   std::array<int, 3> coordsOf(int rank) const;
   /// The rank whose box holds position x (positions outside a bounded axis go to the nearest box).
@@ -72,19 +99,21 @@ class Decomposition {
   /// What lies beyond the lower (dir = -1) or upper (dir = +1) face of this rank's box along axis.
   Side side(int axis, int dir) const;
   /// The rank across that face (-1 beyond a physical face; this rank itself across a periodic face
-  /// of an axis with one rank).
+  /// of an axis with one rank). Explicit boxes: -1 (no single rank; ask neighbourRanks()).
   int neighbourAcross(int axis, int dir) const;
-  /// The distinct other ranks among the 26 face, edge and corner neighbours (ascending).
+  /// The distinct other ranks among the 26 face, edge and corner neighbours (ascending); explicit
+  /// boxes: the other ranks whose boxes come within reach() (ascending).
   const std::vector<int>& neighbourRanks() const { return neighbours_; }
 
   /// Per axis, the distance from x to the box of `rank` along that axis (0 inside its range), with
   /// the nearest periodic image on periodic axes. A particle whose three distances are below a
   /// cut-off may interact with particles owned by that rank.
   Vec3 distanceToBox(const Vec3& x, int rank) const;
-  /// The smallest box width of any rank along any decomposed axis (m); +inf on one rank.
+  /// The smallest box width of any rank along any decomposed axis (m); +inf on one rank. Explicit
+  /// boxes: along every axis that a box does not span whole.
   double smallestBoxWidth() const;
 
-  /// "2 x 1 x 1" for messages.
+  /// "2 x 1 x 1" for messages; "4 boxes" for explicit boxes.
   std::string describe() const;
 
  private:
@@ -97,6 +126,11 @@ class Decomposition {
   std::array<std::vector<double>, 3> cut_{std::vector<double>{}, {}, {}};  // layout[a] + 1 coordinates
   std::array<std::vector<int>, 3> cellCut_{};  // layout[a] + 1 cell indices (gridded only)
   std::vector<int> neighbours_;
+  // Explicit boxes (explicit_): one per rank, and the reach their neighbours were found with.
+  bool explicit_ = false;
+  std::vector<Box> boxes_;
+  double reach_ = 0.0;
+  int explicitOwnerOf(const Vec3& x) const;
 };
 
 }  // namespace gf::parallel

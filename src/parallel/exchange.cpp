@@ -41,6 +41,48 @@ std::vector<Bytes> exchange(const std::vector<int>& ranks, const std::vector<Byt
   return received;
 }
 
+std::vector<Bytes> exchangeWithAny(const std::vector<Bytes>& send) {
+  const Environment& env = Environment::instance();
+  const int size = env.size(), me = env.rank();
+  if (send.size() != static_cast<std::size_t>(size)) throw std::logic_error("parallel::exchangeWithAny: one buffer per rank expected");
+  std::vector<long long> sendSize(static_cast<std::size_t>(size)), recvSize(static_cast<std::size_t>(size));
+  for (int r = 0; r < size; ++r) sendSize[r] = r == me ? 0 : static_cast<long long>(send[r].size());
+  MPI_Alltoall(sendSize.data(), 1, MPI_LONG_LONG, recvSize.data(), 1, MPI_LONG_LONG, world());
+  std::vector<Bytes> received(static_cast<std::size_t>(size));
+  std::vector<MPI_Request> requests;
+  constexpr int kAnyTag = 7104;
+  for (int r = 0; r < size; ++r) {
+    if (recvSize[r] == 0) continue;
+    if (recvSize[r] > std::numeric_limits<int>::max()) throw std::runtime_error("parallel::exchangeWithAny: message above 2 GiB");
+    received[r].resize(static_cast<std::size_t>(recvSize[r]));
+    requests.emplace_back();
+    MPI_Irecv(received[r].data(), static_cast<int>(recvSize[r]), MPI_BYTE, r, kAnyTag, world(), &requests.back());
+  }
+  for (int r = 0; r < size; ++r) {
+    if (sendSize[r] == 0) continue;
+    if (sendSize[r] > std::numeric_limits<int>::max()) throw std::runtime_error("parallel::exchangeWithAny: message above 2 GiB");
+    requests.emplace_back();
+    MPI_Isend(send[r].data(), static_cast<int>(sendSize[r]), MPI_BYTE, r, kAnyTag, world(), &requests.back());
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  return received;
+}
+
+Bytes broadcastFromRoot(const Bytes& local) {
+  long long size = static_cast<long long>(local.size());
+  MPI_Bcast(&size, 1, MPI_LONG_LONG, 0, world());
+  if (size > std::numeric_limits<int>::max()) throw std::runtime_error("parallel::broadcastFromRoot: message above 2 GiB");
+  Bytes out = Environment::instance().root() ? local : Bytes(static_cast<std::size_t>(size));
+  MPI_Bcast(out.data(), static_cast<int>(size), MPI_BYTE, 0, world());
+  return out;
+}
+
+std::vector<long long> sumOverRanks(const std::vector<long long>& local) {
+  std::vector<long long> global(local.size());
+  MPI_Allreduce(local.data(), global.data(), static_cast<int>(local.size()), MPI_LONG_LONG, MPI_SUM, world());
+  return global;
+}
+
 std::vector<Bytes> allgather(const Bytes& local) {
   const int size = Environment::instance().size();
   int mine = static_cast<int>(local.size());

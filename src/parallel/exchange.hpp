@@ -17,8 +17,17 @@ using Bytes = std::vector<char>;
 
 /// Sends send[k] to ranks[k] and returns, per k, the bytes ranks[k] sent to this rank.
 std::vector<Bytes> exchange(const std::vector<int>& ranks, const std::vector<Bytes>& send);
+/// Sends send[r] to rank r, for every rank r (send.size() = ranks; this rank's own entry and empty
+/// buffers travel nowhere), and returns, indexed by rank, the bytes each rank sent to this one. No
+/// rank needs to know beforehand who sends to it: the sizes go round in one MPI_Alltoall, then only
+/// the non-empty buffers travel. For moves to any rank (a migration after a rebalancing).
+std::vector<Bytes> exchangeWithAny(const std::vector<Bytes>& send);
 /// Every rank's bytes, indexed by rank.
 std::vector<Bytes> allgather(const Bytes& local);
+/// Rank 0's bytes on every rank.
+Bytes broadcastFromRoot(const Bytes& local);
+/// Element-wise sums over all ranks (every rank passes the same length).
+std::vector<long long> sumOverRanks(const std::vector<long long>& local);
 /// Every rank's bytes on rank 0, indexed by rank (empty on the other ranks).
 std::vector<Bytes> gatherToRoot(const Bytes& local);
 double maxOverRanks(double local);
