@@ -17,6 +17,7 @@
 #include "fluid/initial_condition.hpp"
 #include "fluid/loops.hpp"
 #include "fluid/solid_mesh.hpp"
+#include "parallel/halo.hpp"
 #include "parallel/reductions.hpp"
 
 namespace gf::fluid {
@@ -644,33 +645,62 @@ void Solver::checkHealth(long long step, double time) const {
 }
 
 void Solver::save(BinaryWriter& out) const {
+  // The whole grid's arrays (ghosts included) in the layout of one rank: on a decomposed grid
+  // gathered on rank 0, whose writer the checkpoint takes (a restart on any rank count reads the
+  // same arrays and takes its box of them).
+  const parallel::Decomposition& d = *decomposition_;
+  Field whole;
+  auto putField = [&](const Field& f) {
+    if (!d.distributed()) return out.putVector(f.data());
+    parallel::gatherField(f, d, globalGrid_, whole);
+    out.putVector(whole.data());
+  };
   out.putString("fluid-v2");
-  out.put(grid_.cells);
+  out.put(globalGrid_.cells);
   out.put(time_);
   out.put(dtPrev_);
   out.put(lastDt_);
   out.put(steps_);
   out.put(drive_);
   for (int c = 0; c < 3; ++c) {
-    out.putVector(u_[c].data());
-    out.putVector(uOld_[c].data());
-    out.putVector(guessError_[c].data());
-    out.putVector(convOld_[c].data());
-    out.putVector(coupling_.forceDensity[c].data());
-    out.putVector(coupling_.particleVelocity[c].data());
+    putField(u_[c]);
+    putField(uOld_[c]);
+    putField(guessError_[c]);
+    putField(convOld_[c]);
+    putField(coupling_.forceDensity[c]);
+    putField(coupling_.particleVelocity[c]);
   }
-  out.putVector(p_.data());
-  out.putVector(epsOlder_.data());
-  out.putVector(scalar_.data());
-  out.putVector(coupling_.voidFraction.data());
-  out.putVector(coupling_.voidFractionOld.data());
-  out.putVector(coupling_.dragCoefficient.data());
-  out.putVector(poissonX_);  // last pressure increment: initial guess of the next solve
+  putField(p_);
+  putField(epsOlder_);
+  putField(scalar_);
+  putField(coupling_.voidFraction);
+  putField(coupling_.voidFractionOld);
+  putField(coupling_.dragCoefficient);
+  if (!d.distributed()) {
+    out.putVector(poissonX_);  // last pressure increment: initial guess of the next solve
+  } else {
+    // (the box's cells as a cell field, gathered, written as the whole grid's cells)
+    Field increment(grid_);
+    const int nx = grid_.cells[0], ny = grid_.cells[1];
+    for (int k = 0; k < grid_.cells[2]; ++k)
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i)
+          increment(i, j, k) = poissonX_[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k)];
+    parallel::gatherField(increment, d, globalGrid_, whole);
+    std::vector<double> cells;
+    if (d.rank() == 0) {
+      cells.reserve(globalGrid_.interiorCellCount());
+      for (int k = 0; k < globalGrid_.cells[2]; ++k)
+        for (int j = 0; j < globalGrid_.cells[1]; ++j)
+          for (int i = 0; i < globalGrid_.cells[0]; ++i) cells.push_back(whole(i, j, k));
+    }
+    out.putVector(cells);
+  }
 }
 
 void Solver::load(BinaryReader& in) {
   if (in.getString() != "fluid-v2") throw CheckpointError("fluid checkpoint: unknown section tag");
-  if (in.get<std::array<int, 3>>() != grid_.cells)
+  if (in.get<std::array<int, 3>>() != globalGrid_.cells)
     throw CheckpointError("fluid checkpoint: grid size differs from the case file");
   time_ = in.get<double>();
   bc_.time = time_;
@@ -678,10 +708,19 @@ void Solver::load(BinaryReader& in) {
   lastDt_ = in.get<double>();
   steps_ = in.get<long long>();
   drive_ = in.get<double>();
+  // The whole grid's arrays (save()); on a decomposed grid this rank takes its box of them.
+  const parallel::Decomposition& d = *decomposition_;
   auto readInto = [&](Field& f) {
     auto v = in.getVector<double>();
-    if (v.size() != f.data().size()) throw CheckpointError("fluid checkpoint: field size mismatch");
-    f.data() = std::move(v);
+    if (!d.distributed()) {
+      if (v.size() != f.data().size()) throw CheckpointError("fluid checkpoint: field size mismatch");
+      f.data() = std::move(v);
+      return;
+    }
+    Field whole(globalGrid_, f.staggering());
+    if (v.size() != whole.data().size()) throw CheckpointError("fluid checkpoint: field size mismatch");
+    whole.data() = std::move(v);
+    parallel::extractBox(whole, d, f);
   };
   for (int c = 0; c < 3; ++c) {
     readInto(u_[c]);
@@ -701,8 +740,20 @@ void Solver::load(BinaryReader& in) {
   readInto(coupling_.voidFractionOld);
   readInto(coupling_.dragCoefficient);
   auto guess = in.getVector<double>();
-  if (guess.size() != poissonX_.size()) throw CheckpointError("fluid checkpoint: pressure increment size mismatch");
-  poissonX_ = std::move(guess);
+  if (guess.size() != globalGrid_.interiorCellCount())
+    throw CheckpointError("fluid checkpoint: pressure increment size mismatch");
+  if (!d.distributed()) {
+    poissonX_ = std::move(guess);
+  } else {
+    const auto off = d.cellOffset();
+    const int nx = grid_.cells[0], ny = grid_.cells[1], NX = globalGrid_.cells[0], NY = globalGrid_.cells[1];
+    for (int k = 0; k < grid_.cells[2]; ++k)
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i)
+          poissonX_[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k)] =
+              guess[static_cast<std::size_t>(i + off[0]) +
+                    static_cast<std::size_t>(NX) * (j + off[1] + static_cast<std::size_t>(NY) * (k + off[2]))];
+  }
   poissonKey_ = -1.0;
   healthCheckedAt_ = -1;
 }

@@ -8,13 +8,14 @@
 #include <vector>
 
 #include "parallel/environment.hpp"
+#include "parallel/exchange.hpp"
 
 namespace gf::parallel {
 
 namespace {
 
 /// A box of points [lo, hi) per axis in a field's local indices (ghosts negative or >= points).
-struct Box {
+struct PointBox {
   std::array<int, 3> lo{0, 0, 0}, hi{0, 0, 0};
   std::size_t count() const {
     std::size_t c = 1;
@@ -25,7 +26,7 @@ struct Box {
 
 /// fn(flat index) over the points of b, x fastest (the same order on sender and receiver).
 template <class Fn>
-void forBox(const Field& f, const Box& b, Fn&& fn) {
+void forBox(const Field& f, const PointBox& b, Fn&& fn) {
   if (b.count() == 0) return;
   for (int k = b.lo[2]; k < b.hi[2]; ++k)
     for (int j = b.lo[1]; j < b.hi[1]; ++j) {
@@ -61,8 +62,8 @@ struct Axes {
   }
 
   /// The points of class e (ghosts owned by the rank at coords + e; e = 0: this rank's points).
-  Box classBox(const std::array<int, 3>& e) const {
-    Box b;
+  PointBox classBox(const std::array<int, 3>& e) const {
+    PointBox b;
     for (int a = 0; a < 3; ++a) {
       if (e[a] < 0) {
         b.lo[a] = -g;
@@ -79,8 +80,8 @@ struct Axes {
   }
 
   /// This rank's points that the rank at coords + e holds as its ghosts of class -e.
-  Box partnerBox(const std::array<int, 3>& e) const {
-    Box b = classBox({0, 0, 0});
+  PointBox partnerBox(const std::array<int, 3>& e) const {
+    PointBox b = classBox({0, 0, 0});
     for (int a = 0; a < 3; ++a) {
       if (e[a] > 0) {
         b.lo[a] = own[a] - g;
@@ -136,7 +137,7 @@ void exchange(std::initializer_list<Field*> fields, const Decomposition& d, bool
     std::size_t fi = 0;
     for (Field* f : fields) {
       (void)f;
-      const Box cls = axes[fi].classBox(e), partner = axes[fi].partnerBox(e);
+      const PointBox cls = axes[fi].classBox(e), partner = axes[fi].partnerBox(e);
       sendCount += (reverse ? cls : partner).count();
       recvCount += (reverse ? partner : cls).count();
       ++fi;
@@ -189,6 +190,68 @@ void exchange(std::initializer_list<Field*> fields, const Decomposition& d, bool
 }
 
 }  // namespace
+
+void gatherField(const Field& local, const Decomposition& d, const CartesianGrid& wholeGrid, Field& whole) {
+  if (!d.distributed()) {
+    whole = local;
+    return;
+  }
+  // This rank's class-0 points (x fastest), sent to rank 0 with their box in global indices.
+  const Axes axes(local, d);
+  const PointBox mine = axes.classBox({0, 0, 0});
+  const auto offset = d.cellOffset();
+  Bytes bytes;
+  Packer pack(bytes);
+  for (int a = 0; a < 3; ++a) {
+    pack.put(mine.lo[a] + offset[a]);
+    pack.put(mine.hi[a] + offset[a]);
+  }
+  forBox(local, mine, [&](std::size_t id) { pack.put(local.data()[id]); });
+  const std::vector<Bytes> all = gatherToRoot(bytes);
+  if (d.rank() != 0) {
+    whole = Field();
+    return;
+  }
+  whole = Field(wholeGrid, local.staggering());
+  for (const Bytes& from : all) {
+    Unpacker in(from);
+    PointBox box;
+    for (int a = 0; a < 3; ++a) {
+      box.lo[a] = in.get<int>();
+      box.hi[a] = in.get<int>();
+    }
+    forBox(whole, box, [&](std::size_t id) { whole.data()[id] = in.get<double>(); });
+  }
+  // A periodic axis split among ranks: no rank's own points reach beyond the domain there (the
+  // ends are cuts), so the whole grid's wrap-around points (ghosts, and the last face of a field
+  // staggered along it) are copies of the other end, as one rank's periodic fill makes them.
+  const int g = wholeGrid.ghosts;
+  const auto& pts = whole.points();
+  for (int a = 0; a < 3; ++a) {
+    if (!(d.domain().periodic[a] && d.layout()[a] > 1)) continue;
+    const int n = wholeGrid.cells[a];
+    for (int k = -g; k < pts[2] + g; ++k)
+      for (int j = -g; j < pts[1] + g; ++j)
+        for (int i = -g; i < pts[0] + g; ++i) {
+          std::array<int, 3> at{i, j, k};
+          if (at[a] >= 0 && at[a] < n) continue;
+          const std::size_t to = whole.index(i, j, k);
+          at[a] = ((at[a] % n) + n) % n;
+          whole.data()[to] = whole(at[0], at[1], at[2]);
+        }
+  }
+}
+
+void extractBox(const Field& whole, const Decomposition& d, Field& local) {
+  const auto offset = d.distributed() ? d.cellOffset() : std::array<int, 3>{0, 0, 0};
+  const int g = local.grid().ghosts;
+  const auto& pts = local.points();
+  for (int k = -g; k < pts[2] + g; ++k)
+    for (int j = -g; j < pts[1] + g; ++j) {
+      const std::size_t to = local.index(-g, j, k), from = whole.index(-g + offset[0], j + offset[1], k + offset[2]);
+      for (int i = 0; i < pts[0] + 2 * g; ++i) local.data()[to + static_cast<std::size_t>(i)] = whole.data()[from + static_cast<std::size_t>(i)];
+    }
+}
 
 void fillGhosts(Field& f, const Decomposition& d) { exchange({&f}, d, false); }
 void fillGhosts(std::initializer_list<Field*> fields, const Decomposition& d) { exchange(fields, d, false); }

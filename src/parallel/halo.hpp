@@ -48,4 +48,15 @@ void sumGhosts(Field& f, const Decomposition& d);
 /// sumGhosts for several fields at once.
 void sumGhosts(std::initializer_list<Field*> fields, const Decomposition& d);
 
+/// The whole grid's field `whole` (its grid: the domain's; points and ghost layers as one rank
+/// holding the whole grid has them) assembled on rank 0 from every rank's `local` box: each point
+/// from the rank whose class-0 points hold it (its own points, with the ghost layers beyond its
+/// physical and one-rank periodic sides), so every point comes from exactly one rank; along a
+/// periodic axis split among ranks the wrap-around points are copies of the other end. On the
+/// other ranks `whole` is left empty. Collective (all ranks). On one rank: whole = local.
+void gatherField(const Field& local, const Decomposition& d, const CartesianGrid& wholeGrid, Field& whole);
+/// This rank's box of a whole-grid field, every point of `local` (ghosts included) from the
+/// point of `whole` at the same global index; no communication (every rank holds `whole`).
+void extractBox(const Field& whole, const Decomposition& d, Field& local);
+
 }  // namespace gf::parallel

@@ -10,7 +10,8 @@
 // equations with a void fraction, drag coefficient and force density varying in space
 // (superficial inlet, outflow). The monitors' samples (kinetic energy, plane means, flow rates
 // through planes on and off the cuts, probes, line profiles) agree as well. On one process the
-// decomposition has one rank: the solver is the single-process one.
+// decomposition has one rank: the solver is the single-process one. Checkpoints hold the whole
+// grid: written on any layout, they restart the whole grid and the other way round.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,6 +24,7 @@
 #include "fluid_test_util.hpp"
 #include "parallel/decomposition.hpp"
 #include "parallel/environment.hpp"
+#include "parallel/exchange.hpp"
 
 namespace gf::fluid {
 namespace {
@@ -153,6 +155,58 @@ void compareDecomposed(const std::string& yaml, int steps, double dt, bool coupl
     }
     if (env.rank() == 0)
       std::printf("layout %s: velocity %.1e, pressure %.1e of the largest value\n", d.describe().c_str(), worst, pdiff);
+  }
+}
+
+TEST(DecomposedFluid, CheckpointsRestartOnAnyRankCount) {
+  // A checkpoint holds the whole grid's arrays: written on the ranks of a layout (gathered on
+  // rank 0), it restarts the whole grid alone, and the whole grid's checkpoint restarts each
+  // rank's box; both continue as the run that never stopped (to 1e-10).
+  const parallel::Environment& env = parallel::Environment::instance();
+  const std::string text = "domain: {min: [0, 0, 0], max: [2, 1, 1], periodic: [1, 0, 1]}\n"
+                           "fluid:\n  density: 1\n  viscosity: 0.01\n  cells: [16, 12, 12]\n"
+                           "  blocked: [{shape: box, min: [0.8, 0.3, 0.3], max: [1.2, 0.6, 0.7]}]\n"
+                           "  driving: {mode: flow_rate, axis: x, bulk_velocity: 1.0}\n"
+                           "  initial: {velocity: [1, 0.1, 0.05]}\n"
+                           "  momentum_tolerance: 1.0e-13\n  momentum_max_iterations: 400\n"
+                           "  pressure: {solver: hypre, tolerance: 1.0e-13, max_iterations: 500}\n";
+  const double dt = 0.02;
+  auto whole = test::makeCase(text);
+  for (int n = 0; n < 3; ++n) whole.solver->step(dt);
+  BinaryWriter wholeCheckpoint;
+  whole.solver->save(wholeCheckpoint);
+  for (const Layout& layout : layoutsFor(env.size())) {
+    Params params = Params::loadString(text, "test.yaml");
+    const Domain domain = Domain::read(params);
+    Solver split(params, domain, Vec3{}, Decomposition(domain, layout, env.size(), env.rank()));
+    for (int n = 0; n < 3; ++n) split.step(dt);
+    BinaryWriter out;
+    split.save(out);
+    const parallel::Bytes bytes = env.size() > 1 ? parallel::broadcastFromRoot(out.bytes()) : out.bytes();
+    ASSERT_EQ(bytes.size(), wholeCheckpoint.bytes().size()) << "the whole grid's arrays, layout " << split.decomposition().describe();
+    // The whole grid restarted from the split run's checkpoint, the split run from the whole grid's.
+    auto alone = test::makeCase(text);
+    BinaryReader in(bytes.data(), bytes.size());
+    alone.solver->load(in);
+    Params params2 = Params::loadString(text, "test.yaml");
+    Solver restarted(params2, domain, Vec3{}, Decomposition(domain, layout, env.size(), env.rank()));
+    BinaryReader in2(wholeCheckpoint.bytes().data(), wholeCheckpoint.bytes().size());
+    restarted.load(in2);
+    auto continued = test::makeCase(text);
+    BinaryReader in3(wholeCheckpoint.bytes().data(), wholeCheckpoint.bytes().size());
+    continued.solver->load(in3);
+    for (int n = 0; n < 3; ++n) {
+      alone.solver->step(dt);
+      restarted.step(dt);
+      continued.solver->step(dt);
+    }
+    const auto offset = restarted.decomposition().cellOffset();
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_LT(relativeDifference(alone.solver->velocity(c), continued.solver->velocity(c), {0, 0, 0}), 1e-10) << c;
+      EXPECT_LT(relativeDifference(restarted.velocity(c), continued.solver->velocity(c), offset), 1e-10) << c;
+    }
+    EXPECT_LT(relativeDifference(alone.solver->pressure(), continued.solver->pressure(), {0, 0, 0}), 1e-10);
+    EXPECT_LT(relativeDifference(restarted.pressure(), continued.solver->pressure(), offset), 1e-10);
   }
 }
 

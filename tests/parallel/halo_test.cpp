@@ -173,6 +173,64 @@ TEST(Halo, SumOfADepositInACornerGhostReachesTheDiagonalOwner) {
   }
 }
 
+TEST(Halo, GatherAssemblesTheWholeGridAndExtractGivesEachBoxBack) {
+  // Each rank's points coded by their global index: rank 0 gets the whole grid's field with every
+  // point of the domain (and the wrap-around points of periodic axes) coded; a rank's box taken
+  // from it is the rank's field with its ghosts filled.
+  const Environment& env = Environment::instance();
+  for (const Layout& layout : layoutsFor(env.size()))
+    for (const auto& periodic : kPeriodicity) {
+      const Decomposition d(domainWith(periodic), layout, env.size(), env.rank(), kCells);
+      const CartesianGrid grid = localGrid(d);
+      CartesianGrid wholeGrid = grid;
+      wholeGrid.cells = kCells;
+      wholeGrid.origin = d.domain().min;
+      for (int st = 0; st < 4; ++st) {
+        Field f(grid, static_cast<Staggering>(st));
+        const auto& pts = f.points();
+        const auto off = d.cellOffset();
+        for (int k = 0; k < pts[2]; ++k)
+          for (int j = 0; j < pts[1]; ++j)
+            for (int i = 0; i < pts[0]; ++i) f(i, j, k) = code(wrap({off[0] + i, off[1] + j, off[2] + k}, periodic));
+        fillGhosts(f, d);
+        Field whole;
+        gatherField(f, d, wholeGrid, whole);
+        if (d.rank() == 0) {
+          const auto& wp = whole.points();
+          for (int k = 0; k < wp[2]; ++k)
+            for (int j = 0; j < wp[1]; ++j)
+              for (int i = 0; i < wp[0]; ++i) {
+                ASSERT_EQ(whole(i, j, k), code(wrap({i, j, k}, periodic))) << "layout " << d.describe() << " st " << st;
+              }
+          // Wrap-around points of a periodic axis split among ranks: the other end (one rank's
+          // periodic ghosts are its boundary code's, not filled in this test).
+          for (int a = 0; a < 3; ++a)
+            if (periodic[a] && layout[a] > 1) {
+              std::array<int, 3> at{1, 1, 1}, inside{1, 1, 1};
+              at[a] = -1;
+              inside[a] = kCells[a] - 1;
+              EXPECT_EQ(whole(at[0], at[1], at[2]), whole(inside[0], inside[1], inside[2]));
+            }
+        }
+        // Every rank: its box back from the whole grid (broadcast here through a second gather's
+        // data: rank 0's whole grid, rebuilt on the others from the codes).
+        Field all(wholeGrid, static_cast<Staggering>(st));
+        const int g = grid.ghosts;
+        const auto& ap = all.points();
+        for (int k = -g; k < ap[2] + g; ++k)
+          for (int j = -g; j < ap[1] + g; ++j)
+            for (int i = -g; i < ap[0] + g; ++i) all(i, j, k) = code(wrap({i, j, k}, periodic));
+        Field back(grid, static_cast<Staggering>(st));
+        extractBox(all, d, back);
+        for (int k = -g; k < pts[2] + g; ++k)
+          for (int j = -g; j < pts[1] + g; ++j)
+            for (int i = -g; i < pts[0] + g; ++i) {
+              ASSERT_EQ(back(i, j, k), all(off[0] + i, off[1] + j, off[2] + k));
+            }
+      }
+    }
+}
+
 TEST(Halo, RejectsABoxThinnerThanTheGhostLayers) {
   const Environment& env = Environment::instance();
   if (env.size() < 2) GTEST_SKIP() << "needs several ranks";
