@@ -108,6 +108,8 @@ std::size_t unpackGhost(ParticleSet& p, parallel::Unpacker& in) {
   const std::size_t i = p.add(id, type, radius, 1.0, x, v, w);
   p.mass[i] = mass;
   p.orderKey[i] = key;
+  // (a rank that owns no particle has an empty flag array, which add() does not grow)
+  if (p.ghost.size() < p.size()) p.ghost.resize(p.size(), 0);
   p.ghost[i] = 1;
   return i;
 }

@@ -135,3 +135,11 @@ sed -e '$a parallel: {rebalance_interval: 200, rebalance_threshold: 1.0}' "$work
 for n in 1 4; do run $n "$work/recut.yaml" "$work/recut$n" >"$work/recut$n.log" 2>&1 || { cat "$work/recut$n.log"; exit 1; }; done
 same "$work/recut1/checkpoint.bin" "$work/recut4/checkpoint.bin" \
   "periodic box re-cut $(grep -c "rebalanced at step" "$work/recut4.log") times: 4 ranks = 1 rank"
+
+# 8. A rank that owns no particle but holds ghosts: every particle below the cut of two slabs.
+sed -e 's/decomposition: \[2, 2, 1\]/decomposition: [1, 1, 2]/' -e 's/max: \[0.01, 0.02, 0.028\]/max: [0.02, 0.02, 0.014]/' \
+  -e 's/max: \[0.02, 0.02, 0.028\]/max: [0.02, 0.02, 0.014]/' -e 's/count: 500/count: 150/' \
+  -e 's/time: {end: 0.03,/time: {end: 0.01,/' "$work/periodic.yaml" >"$work/empty.yaml"
+echo "parallel: {rebalance_interval: 0}" >>"$work/empty.yaml"
+for n in 1 2; do run $n "$work/empty.yaml" "$work/empty$n"; done
+same "$work/empty1/checkpoint.bin" "$work/empty2/checkpoint.bin" "a rank with ghosts only: 2 ranks = 1 rank"
