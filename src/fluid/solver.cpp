@@ -529,6 +529,9 @@ void Solver::cellLinesAndGhosts(const PlaneSlab* slab, Field& out, Line&& line, 
   } else {
     parallelFor(lines, line);
     if (fill) fillCellGhosts(out, bc_, CellGhostKind::ZeroGradient);
+    // (a decomposed grid: the ghosts across the cuts are the neighbours' interior cells, which
+    // the readers of the interior interpolate near a cut; exchanged with CellGhosts::Left too)
+    else if (bc_.distributed()) parallel::fillGhosts(out, *decomposition_);
   }
 }
 

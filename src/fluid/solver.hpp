@@ -91,7 +91,8 @@ class Solver {
   /// Cell-centred velocity (mean of the two face velocities). CellGhosts::Filled: zero-gradient
   /// ghosts as well; CellGhosts::Left: interior cells only, the ghosts keep what they held (for
   /// readers of the interior only, e.g. the coupling's FluidView: six ghost fills per fluid step of
-  /// a 2 x 30 x 90 bed cost as much as the values themselves).
+  /// a 2 x 30 x 90 bed cost as much as the values themselves). On a decomposed grid both fill the
+  /// ghosts across the cuts from the neighbour ranks (collective: every rank calls these).
   void cellVelocity(Field out[3], CellGhosts ghosts = CellGhosts::Filled) const;
   /// Cell-centred grad p, including the mean driving gradient (-drivingPressureGradient()) along
   /// the driving axis; ghosts as cellVelocity.

@@ -126,6 +126,30 @@ void compareDecomposed(const std::string& yaml, int steps, double dt, bool coupl
     // The time step estimate and the divergence are global maxima: the same on every rank.
     EXPECT_NEAR(solver.stableTimeStep(), whole.solver->stableTimeStep(), 1e-10 * whole.solver->stableTimeStep());
     EXPECT_NEAR(solver.maxDivergence(), whole.solver->maxDivergence(), 1e-8 * velocityScale(*whole.solver));
+    // The coupling's cell fields, ghosts left to their readers: the ghosts across the cuts hold
+    // the neighbours' cells (every point with a global index inside the domain).
+    {
+      Field cv[3], cw[3], gv[3], gw[3];
+      solver.cellVelocity(cv, CellGhosts::Left);
+      whole.solver->cellVelocity(cw);
+      solver.pressureGradient(gv, CellGhosts::Left);
+      whole.solver->pressureGradient(gw);
+      const int g = solver.grid().ghosts;
+      const auto& n = solver.grid().cells;
+      const auto& N = whole.solver->grid().cells;
+      double m = 0.0;
+      for (int k = -g; k < n[2] + g; ++k)
+        for (int j = -g; j < n[1] + g; ++j)
+          for (int i = -g; i < n[0] + g; ++i) {
+            const int I = offset[0] + i, J = offset[1] + j, K = offset[2] + k;
+            if (I < 0 || J < 0 || K < 0 || I >= N[0] || J >= N[1] || K >= N[2]) continue;
+            for (int c = 0; c < 3; ++c) {
+              m = std::max(m, std::abs(cv[c](i, j, k) - cw[c](I, J, K)) / std::max(1e-300, velocityScale(*whole.solver)));
+              m = std::max(m, std::abs(gv[c](i, j, k) - gw[c](I, J, K)) / std::max({1e-300, maxAbs(gw[0]), maxAbs(gw[1]), maxAbs(gw[2])}));
+            }
+          }
+      EXPECT_LT(m, 1e-9) << "cell velocity and pressure gradient with their ghosts, layout " << d.describe();
+    }
     // The monitors' samples (collective): the whole domain's values on every rank.
     const Solver& w = *whole.solver;
     const Domain& dom = domain;
