@@ -5,13 +5,14 @@
 // without decomposition, hypre on its own process) and compares its box with it, point by point:
 // velocity, pressure and scalar agree to 1e-10 of the largest value after the steps (the solvers'
 // tolerances are tight, so only round-off in the order of the reductions separates the runs).
-// Cases: the lid-driven cavity (3D), a periodic channel at a prescribed flow rate with a blocked
-// box, a parabolic inlet to a pressure outlet with a passive scalar, and the volume-averaged
-// equations with a void fraction, drag coefficient and force density varying in space
-// (superficial inlet, outflow). The monitors' samples (kinetic energy, plane means, flow rates
-// through planes on and off the cuts, probes, line profiles) agree as well. On one process the
-// decomposition has one rank: the solver is the single-process one. Checkpoints hold the whole
-// grid: written on any layout, they restart the whole grid and the other way round.
+// Cases: the lid-driven cavity (3D, two pressure correctors), a periodic channel at a prescribed
+// flow rate with a blocked box, a parabolic inlet to a pressure outlet with a passive scalar, and
+// the volume-averaged equations with a void fraction, drag coefficient and force density varying
+// in space (superficial inlet, outflow). The coupling's cell fields with their ghosts across the
+// cuts and the monitors' samples (kinetic energy, plane means, flow rates through planes on and
+// off the cuts, probes, line profiles) agree as well. Checkpoints hold the whole grid: written on
+// any layout, they restart the whole grid and the other way round. On one process the
+// decomposition has one rank: the solver is the single-process one.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -236,7 +237,7 @@ TEST(DecomposedFluid, CheckpointsRestartOnAnyRankCount) {
 
 TEST(DecomposedFluid, CavityMatchesTheWholeGrid) {
   const std::string yaml = "domain: {min: [0, 0, 0], max: [1, 1, 1]}\n"
-                           "fluid:\n  density: 1\n  viscosity: 0.01\n  cells: [12, 12, 12]\n"
+                           "fluid:\n  density: 1\n  viscosity: 0.01\n  cells: [12, 12, 12]\n  correctors: 2\n"
                            "  boundaries:\n    y_max: {type: wall, velocity: [1, 0, 0.3]}\n";
   compareDecomposed(yaml, 6, 0.02, false);
 }
