@@ -43,6 +43,10 @@ System::System(Params& root, const Domain& domain, const Vec3& gravity, InitialP
       {"rebalance_interval", "-", "check the balance at the first list build after every this many steps (0: never)",
        Range::atLeast(0)},
       1000);
+  balance_.byPairs = par.choice({"rebalance_weight", "-",
+                                 "load of a particle: particles (1 each) or pairs (1 + its neighbour-list pairs, "
+                                 "for beds with dense and dilute parts)"},
+                                {"particles", "pairs"}, "particles") == "pairs";
   if (root.documenting()) return;
   updateWalls();
   // A restart skips the initial insertion: load() would discard its particles (a random packing of

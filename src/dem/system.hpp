@@ -44,6 +44,7 @@ struct NeighbourSettings {
 struct BalanceSettings {
   double threshold = 1.2;
   long long interval = 1000;  // steps; 0 = never
+  bool byPairs = false;       // weight of a particle: 1 (false) or 1 + its neighbour-list pairs
 };
 
 struct ContactStatistics {

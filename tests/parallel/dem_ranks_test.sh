@@ -114,7 +114,8 @@ echo "ok: divergence on 4 ranks: $(grep "particle left the domain" <<<"$message"
 #    third of a column cut in four slabs along z. Recursive coordinate bisection re-cuts the boxes at
 #    the first list build (more than 20 % of the particles change rank) and at later checks when
 #    the imbalance exceeds 1.1; the checkpoint equals the run on one rank. Then the periodic box,
-#    re-cut at every check that finds any imbalance, against its run on one rank.
+#    re-cut at every check that finds any imbalance of particles and their pairs, against its run
+#    on one rank.
 low=$work/low.yaml
 sed -e 's/count: 2000/count: 600/' -e 's/max: \[0.03, 0.03, 0.115\]/max: [0.03, 0.03, 0.04]/' \
   -e 's/^domain:$/domain:\n  decomposition: [1, 1, 4]/' "$src/cases/dem_packed_bed_settling.yaml" >"$low"
@@ -131,7 +132,8 @@ fi
 echo "ok: rebalancing: $events events, up to $moved % of the particles moved: $(grep -m1 "rebalanced at step" "$work/low4.log")"
 if grep -q "rebalanced" "$work/low1.log"; then echo "FAIL: one rank rebalanced"; exit 1; fi
 # (the checkpoint holds the case's fingerprint: both runs read the same file)
-sed -e '$a parallel: {rebalance_interval: 200, rebalance_threshold: 1.0}' "$work/periodic4.yaml" >"$work/recut.yaml"
+sed -e '$a parallel: {rebalance_interval: 200, rebalance_threshold: 1.0, rebalance_weight: pairs}' \
+  "$work/periodic4.yaml" >"$work/recut.yaml"
 for n in 1 4; do run $n "$work/recut.yaml" "$work/recut$n" >"$work/recut$n.log" 2>&1 || { cat "$work/recut$n.log"; exit 1; }; done
 same "$work/recut1/checkpoint.bin" "$work/recut4/checkpoint.bin" \
   "periodic box re-cut $(grep -c "rebalanced at step" "$work/recut4.log") times: 4 ranks = 1 rank"
