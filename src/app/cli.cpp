@@ -109,13 +109,22 @@ int commandRun(const std::string& caseFile, RunOptions options) {
                            simulation->time(), simulation->step(), simulation->checkpointPath()));
     return kExitInterrupted;
   }
+  const long long finalCount = simulation->dem().globalParticleCount();  // (collective: every rank)
   if (!options.quiet) {
-    std::printf("\n%s", simulation->timingTable(wall, simulation->time() - startTime).c_str());
+    std::printf("\n%s", simulation->timingTable(wall, simulation->time() - startTime, finalCount).c_str());
     const long long steps = simulation->dem().steps() - startSteps;
     const long long rebuilds = simulation->dem().rebuilds() - startRebuilds;
     if (steps > 0)  // (as LAMMPS' "Neighbor list builds"): the displacement criterion's rate
       std::printf("neighbour lists    %lld builds in %lld DEM steps (every %.1f steps)\n", rebuilds, steps,
                   rebuilds > 0 ? static_cast<double>(steps) / static_cast<double>(rebuilds) : 0.0);
+    if (ranks > 1) {  // (the phases above are rank 0's)
+      const auto& p = simulation->dem().particles();
+      const std::size_t owned = p.ownedCount();
+      std::printf("MPI                %d ranks (%s); phases of rank 0, which owns %zu particles and holds %zu ghosts "
+                  "(%.0f %%)\n",
+                  ranks, simulation->decomposition().describe().c_str(), owned, p.size() - owned,
+                  owned ? 100.0 * static_cast<double>(p.size() - owned) / static_cast<double>(owned) : 0.0);
+    }
     std::printf("\noutput written to %s/\n", s.outputDirectory.c_str());
     if (s.outputInterval > 0.0 && s.writeParticles)
       std::printf("view it in ParaView: paraview %s/particles.pvd  (Glyph filter, scale by 'radius' x2, sphere glyphs)\n",

@@ -487,7 +487,11 @@ RunStatus Simulation::run() {
       saveGoodState();
       nextCheckpointStep += settings_.checkpointInterval;
     }
-    if (pendingSignal() != 0) {
+    // (under MPI a signal may reach the ranks at different steps: they stop together, at the
+    // first step after any rank saw one)
+    const bool signalled = decomposition_.distributed() ? parallel::anyOverRanks(pendingSignal() != 0)
+                                                        : pendingSignal() != 0;
+    if (signalled) {
       saveGoodState();
       progress.finish(time());
       return RunStatus::Interrupted;
@@ -505,7 +509,7 @@ RunStatus Simulation::run() {
 
 // ------------------------------------------------------------------ report
 
-std::string Simulation::timingTable(double wallSeconds, double simulatedSeconds) const {
+std::string Simulation::timingTable(double wallSeconds, double simulatedSeconds, long long particles) const {
   PhaseTimers total = dem_->timers();
   total.add(Phase::Output, appTimers_.seconds(Phase::Output));
   total.add(Phase::Coupling, appTimers_.seconds(Phase::Coupling));
@@ -526,7 +530,8 @@ std::string Simulation::timingTable(double wallSeconds, double simulatedSeconds)
   out += fmt::format("{:<18} {:>10.3f} {:>6.1f}%\n", "other", other, wallSeconds > 0 ? 100.0 * other / wallSeconds : 0.0);
   out += fmt::format("{:<18} {:>10.3f}\n", "total", wallSeconds);
   if (simulatedSeconds > 0.0) {
-    const double particleSteps = static_cast<double>(dem_->globalParticleCount()) * simulatedSeconds / settings_.demStep;
+    const double count = particles >= 0 ? static_cast<double>(particles) : static_cast<double>(dem_->particles().size());
+    const double particleSteps = count * simulatedSeconds / settings_.demStep;
     out += fmt::format("throughput         {:.4g} s wall per simulated second", wallSeconds / simulatedSeconds);
     if (particleSteps > 0.0) out += fmt::format(", {:.4g} ns per particle-step (all phases)", 1e9 * wallSeconds / particleSteps);
     out += "\n";

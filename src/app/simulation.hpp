@@ -96,7 +96,9 @@ class Simulation {
   bool rootRank() const { return decomposition_.rank() == 0; }
   /// Wall time per phase for this invocation (simulatedSeconds: physical time it advanced), with
   /// the throughput figures the benchmarks quote (s wall per simulated s, ns per particle-step).
-  std::string timingTable(double wallSeconds, double simulatedSeconds) const;
+  /// `particles`: the run's particle count (under MPI the caller's globalParticleCount(), a
+  /// collective the ranks call together; -1: this rank's particles).
+  std::string timingTable(double wallSeconds, double simulatedSeconds, long long particles = -1) const;
 
  private:
   void writeOutput();

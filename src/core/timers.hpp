@@ -6,10 +6,13 @@
 
 namespace gf {
 
-enum class Phase { NeighbourSearch, Contacts, Integration, Fluid, PressureSolve, Coupling, Output, Count };
+/// (Communication: under MPI, the per-step exchanges with other ranks outside the other phases:
+/// ghost updates, the rebuild vote; migration and ghost exchange at a list build count as
+/// neighbour search.)
+enum class Phase { NeighbourSearch, Contacts, Integration, Fluid, PressureSolve, Coupling, Output, Communication, Count };
 
 inline constexpr std::array<std::string_view, static_cast<int>(Phase::Count)> kPhaseNames = {
-    "neighbour search", "contacts", "integration", "fluid", "pressure solve", "coupling", "I/O"};
+    "neighbour search", "contacts", "integration", "fluid", "pressure solve", "coupling", "I/O", "communication"};
 
 class PhaseTimers {
  public:

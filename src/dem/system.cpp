@@ -521,13 +521,18 @@ void System::step(double dt) {
   if (distributed_) {
     // One vote for all ranks (the same rebuild steps as on one rank): the displacements of the
     // particles every rank owns, and whether any rank's particles came or went.
+    ScopedPhase timer(timers_, Phase::Communication);
     const auto [largest, second] = ownedLargestMoves();
     rebuildNow = parallel::anyOverRanks(rebuildNow || needsRebuild(largest, second));
   } else {
     rebuildNow = rebuildNow || needsRebuild(std::sqrt(displacement2.first), std::sqrt(displacement2.second));
   }
-  if (rebuildNow) rebuild(takePendingOrder(), std::min(before, list_.rows()));
-  else if (distributed_) forwardGhosts();
+  if (rebuildNow) {
+    rebuild(takePendingOrder(), std::min(before, list_.rows()));
+  } else if (distributed_) {
+    ScopedPhase timer(timers_, Phase::Communication);
+    forwardGhosts();
+  }
   computeForces(dt, 0.5 * dt);  // and the closing half kick
   ++steps_;
 }
