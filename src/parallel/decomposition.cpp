@@ -83,7 +83,39 @@ Decomposition::Decomposition(const Domain& domain, std::vector<Box> boxes, int r
   if (std::abs(volume - whole) > 1e-9 * whole)
     throw std::invalid_argument(
         fmt::format("decomposition: the boxes cover {:.6g} of the domain's volume, not all of it", volume / whole));
+  std::vector<int> all(static_cast<std::size_t>(n));
+  for (int r = 0; r < n; ++r) all[static_cast<std::size_t>(r)] = r;
+  buildTree(std::move(all));
   setReach(reach);
+}
+
+int Decomposition::buildTree(std::vector<int> boxes) {
+  const int at = static_cast<int>(tree_.size());
+  tree_.emplace_back();
+  // A plane along which every box lies wholly on one side, with boxes on both: the cut of the
+  // bisection that made them (the first found, axis by axis, at the boxes' lower faces).
+  for (int a = 0; a < 3 && boxes.size() > 1; ++a)
+    for (int candidate : boxes) {
+      const double v = boxes_[static_cast<std::size_t>(candidate)].lower[a];
+      std::vector<int> below, above;
+      for (int b : boxes) {
+        const Box& box = boxes_[static_cast<std::size_t>(b)];
+        if (box.upper[a] <= v) below.push_back(b);
+        else if (box.lower[a] >= v) above.push_back(b);
+        else break;
+      }
+      if (below.empty() || below.size() + above.size() != boxes.size()) continue;
+      const int left = buildTree(std::move(below));
+      const int right = buildTree(std::move(above));
+      Node& node = tree_[static_cast<std::size_t>(at)];
+      node.axis = a;
+      node.cut = v;
+      node.left = left;
+      node.right = right;
+      return at;
+    }
+  tree_[static_cast<std::size_t>(at)].boxes = std::move(boxes);
+  return at;
 }
 
 std::vector<Box> Decomposition::boxes() const {
@@ -131,15 +163,17 @@ int Decomposition::explicitOwnerOf(const Vec3& x) const {
     }
     return true;
   };
-  // The boxes tile the domain, so one box holds y: this rank's and its neighbours' first (where
-  // the particles of a list build are), then all.
-  if (holds(rank_)) return rank_;
-  for (int r : neighbours_)
+  // The boxes tile the domain, so one box holds y: down the cut tree (a position on a cut plane
+  // goes above it, as the boxes' ranges are half-open), then among the leaf's boxes.
+  int node = 0;
+  while (tree_[static_cast<std::size_t>(node)].axis >= 0) {
+    const Node& n = tree_[static_cast<std::size_t>(node)];
+    node = y[n.axis] < n.cut ? n.left : n.right;
+  }
+  const std::vector<int>& leaf = tree_[static_cast<std::size_t>(node)].boxes;
+  for (int r : leaf)
     if (holds(r)) return r;
-  for (int r = 0; r < ranks(); ++r)
-    if (holds(r)) return r;
-  // (a box whose upper face is the domain's and whose neighbour across it is empty: none here)
-  return rank_;
+  return leaf.front();  // (round-off at a face: the leaf's first box)
 }
 
 Layout Decomposition::autoLayout(const Domain& domain, int ranks, std::array<int, 3> cells) {

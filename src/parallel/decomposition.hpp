@@ -131,6 +131,17 @@ class Decomposition {
   std::vector<Box> boxes_;
   double reach_ = 0.0;
   int explicitOwnerOf(const Vec3& x) const;
+  // A cut tree over the explicit boxes (ownerOf in O(log ranks)): a node splits its boxes by the
+  // plane x[axis] = cut into those below (left) and those above (right); a leaf (axis -1) holds
+  // boxes that no plane separates (one box, for the boxes of a bisection).
+  struct Node {
+    int axis = -1;
+    double cut = 0.0;
+    int left = -1, right = -1;
+    std::vector<int> boxes;
+  };
+  std::vector<Node> tree_;
+  int buildTree(std::vector<int> boxes);
 };
 
 }  // namespace gf::parallel

@@ -68,6 +68,49 @@ TEST(ExplicitBoxes, EveryPositionHasOneOwnerAndRanksAgree) {
   EXPECT_FALSE(ranks[0].gridded());
 }
 
+// Boxes of a random recursive bisection of `box` into `parts` (cut axis and position at random).
+void bisectAtRandom(const Box& box, int parts, std::mt19937& random, std::vector<Box>& out) {
+  if (parts == 1) {
+    out.push_back(box);
+    return;
+  }
+  const int axis = static_cast<int>(random() % 3);
+  const int lower = parts / 2;
+  const double f = std::uniform_real_distribution<double>(0.2, 0.8)(random);
+  const double cut = box.lower[axis] + f * (box.upper[axis] - box.lower[axis]);
+  Box a = box, b = box;
+  a.upper[axis] = cut;
+  b.lower[axis] = cut;
+  bisectAtRandom(a, lower, random, out);
+  bisectAtRandom(b, parts - lower, random, out);
+}
+
+TEST(ExplicitBoxes, OwnershipByTheCutTreeMatchesTheBoxes) {
+  // Many boxes of a bisection: the owner found down the cut tree is the box holding the position.
+  const Domain d = box({1.0, 2.0, 3.0});
+  std::mt19937 random(11);
+  for (int parts : {2, 3, 7, 64, 100}) {
+    std::vector<Box> boxes;
+    bisectAtRandom({d.min, d.max}, parts, random, boxes);
+    const Decomposition dec(d, boxes, 0);
+    std::uniform_real_distribution<double> u(-0.05, 1.05);
+    for (int k = 0; k < 3000; ++k) {
+      Vec3 x{u(random), 2.0 * u(random), 3.0 * u(random)};
+      if (k % 10 == 0) x = boxes[static_cast<std::size_t>(k) % boxes.size()].lower;  // on the faces
+      Vec3 y = x;
+      for (int a = 0; a < 3; ++a) y[a] = std::clamp(y[a], d.min[a], d.max[a]);
+      int expected = -1;
+      for (std::size_t r = 0; r < boxes.size() && expected < 0; ++r) {
+        bool in = true;
+        for (int a = 0; a < 3; ++a)
+          in = in && y[a] >= boxes[r].lower[a] && (y[a] < boxes[r].upper[a] || boxes[r].upper[a] == d.max[a]);
+        if (in) expected = static_cast<int>(r);
+      }
+      ASSERT_EQ(dec.ownerOf(x), expected) << parts << " boxes";
+    }
+  }
+}
+
 TEST(ExplicitBoxes, NeighboursAreTheBoxesWithinTheReach) {
   const Domain d = box({1.0, 1.0, 2.0});
   // Rank 0 touches 1 (face) and 2, 3 (across z = 0.5), but not 4 (0.4 away in x).
