@@ -112,7 +112,7 @@ namespace {
 void exchangeGhosts(Field& f, const Boundaries& bc, bool allPlanes) {
   if (bc.distributed() && allPlanes) parallel::fillGhosts(f, *bc.decomposition);
 }
-bool allPlanes(const GhostPlanes& p) { return p.kBegin == 0 && p.kEnd < 0 && p.lowZ && p.highZ; }
+bool allPlanes(const GhostPlanes& p) { return p.kBegin == 0 && p.kEnd < 0 && p.lowZ && p.highZ && p.exchange; }
 }  // namespace
 
 double inletNormalVelocity(const Boundaries& bc, int axis, int side, const CartesianGrid& g, const Vec3& x) {

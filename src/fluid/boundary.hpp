@@ -90,6 +90,9 @@ struct GhostPlanes {
   int kBegin = 0, kEnd = -1;
   bool lowZ = true, highZ = true;
   bool threaded = true;
+  /// On a decomposed grid, a fill of all planes first exchanges the ghosts across the cuts;
+  /// false: the caller has just done so (several fields in one exchange).
+  bool exchange = true;
 };
 
 /// Normal velocity at an inlet face point (profile evaluated at the face centre).

@@ -258,16 +258,32 @@ void Solver::fillAllGhosts() {
   // ghosts none (a 2 x 30 x 90 bed: the x sides are 60 % of the ghost fill work).
   const int firstAxis = ghostsFresh_ ? firstTimeDependentVelocityAxis(bc_) : 0;
   const bool fresh = ghostsFresh_;
+  // A decomposed grid: the ghosts across the cuts of every field below in one exchange (one
+  // message per neighbour), then each field's fill without its own exchange (the same values:
+  // the fills change no point that the exchange sends and the others' fills overwrite).
+  const bool batch = bc_.distributed();
+  if (batch) {
+    std::vector<Field*> fields{&coupling_.voidFraction, &u_[0], &u_[1], &u_[2]};
+    if (!fresh) fields.push_back(&p_);
+    for (Field* f : {&coupling_.voidFractionOld, &epsOlder_, &coupling_.dragCoefficient}) fields.push_back(f);
+    for (int c = 0; c < 3; ++c) {
+      fields.push_back(&coupling_.forceDensity[c]);
+      fields.push_back(&coupling_.particleVelocity[c]);
+    }
+    if (scalarEnabled_) fields.push_back(&scalar_);
+    parallel::fillGhosts(fields, *decomposition_);
+  }
   // Small grids: on a plane team, each member the ghosts of its planes (every field in the
   // order below: the same values).
   forCellPlanes(ghostTeam_, [&](const PlaneSlab* slab) {
-    auto cells = [&](Field& f, CellGhostKind kind) {
-      fillCellGhostsPlanes(f, bc_, kind, slab ? slab->ghostPlanes(f.points()) : GhostPlanes{});
+    auto planesOf = [&](const Field& f) {
+      GhostPlanes planes = slab ? slab->ghostPlanes(f.points()) : GhostPlanes{};
+      planes.exchange = !batch;
+      return planes;
     };
+    auto cells = [&](Field& f, CellGhostKind kind) { fillCellGhostsPlanes(f, bc_, kind, planesOf(f)); };
     cells(coupling_.voidFraction, CellGhostKind::ZeroGradient);  // first: superficial inlets use it
-    for (int c = 0; c < 3; ++c)
-      fillVelocityGhostsPlanes(u_[c], c, bc_, GhostMode::Full, slab ? slab->ghostPlanes(u_[c].points()) : GhostPlanes{},
-                               firstAxis);
+    for (int c = 0; c < 3; ++c) fillVelocityGhostsPlanes(u_[c], c, bc_, GhostMode::Full, planesOf(u_[c]), firstAxis);
     if (!fresh) cells(p_, CellGhostKind::Pressure);
     // eps_old, eps_older, F and u_p are read only at momentum unknown faces (cell on each side:
     // a ghost only across a periodic boundary); K also at pressure outlet faces.

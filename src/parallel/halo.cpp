@@ -121,7 +121,7 @@ std::vector<Direction> sharedDirections(const Decomposition& d) {
 }
 
 /// reverse = false: fillGhosts; true: sumGhosts.
-void exchange(std::initializer_list<Field*> fields, const Decomposition& d, bool reverse) {
+void exchange(const std::vector<Field*>& fields, const Decomposition& d, bool reverse) {
   if (!d.distributed() || fields.size() == 0) return;
   const auto directions = sharedDirections(d);
   if (directions.empty()) return;
@@ -253,9 +253,10 @@ void extractBox(const Field& whole, const Decomposition& d, Field& local) {
     }
 }
 
-void fillGhosts(Field& f, const Decomposition& d) { exchange({&f}, d, false); }
-void fillGhosts(std::initializer_list<Field*> fields, const Decomposition& d) { exchange(fields, d, false); }
-void sumGhosts(Field& f, const Decomposition& d) { exchange({&f}, d, true); }
-void sumGhosts(std::initializer_list<Field*> fields, const Decomposition& d) { exchange(fields, d, true); }
+void fillGhosts(Field& f, const Decomposition& d) { exchange(std::vector<Field*>{&f}, d, false); }
+void fillGhosts(std::initializer_list<Field*> fields, const Decomposition& d) { exchange(std::vector<Field*>(fields), d, false); }
+void fillGhosts(const std::vector<Field*>& fields, const Decomposition& d) { exchange(fields, d, false); }
+void sumGhosts(Field& f, const Decomposition& d) { exchange(std::vector<Field*>{&f}, d, true); }
+void sumGhosts(std::initializer_list<Field*> fields, const Decomposition& d) { exchange(std::vector<Field*>(fields), d, true); }
 
 }  // namespace gf::parallel

@@ -32,6 +32,7 @@
 // at least `ghosts` cells (ghosts + 1 for a field staggered along the axis) along every decomposed
 // axis; std::invalid_argument otherwise.
 #include <initializer_list>
+#include <vector>
 
 #include "core/grid.hpp"
 #include "parallel/decomposition.hpp"
@@ -42,6 +43,7 @@ namespace gf::parallel {
 void fillGhosts(Field& f, const Decomposition& d);
 /// fillGhosts for several fields at once (one message per neighbour direction for all of them).
 void fillGhosts(std::initializer_list<Field*> fields, const Decomposition& d);
+void fillGhosts(const std::vector<Field*>& fields, const Decomposition& d);
 
 /// Add the values in the ghosts across Shared sides to their owners' points, then zero those ghosts.
 void sumGhosts(Field& f, const Decomposition& d);
