@@ -514,7 +514,7 @@ int Solver::solveHelmholtz(int c, double dt, double g0, bool predictor) {
   // span the whole flat array (ghosts included) and are zero off the unknown faces, so every
   // vector operation is one contiguous loop.
   // (no unknowns on any rank: a rank without any takes part in the others' reductions)
-  if (maxAcrossRanks(unknownList_[c].empty() ? 0.0 : 1.0) == 0.0) {
+  if (!anyUnknowns_[c]) {
     if (predictor) uOld_[c].data() = u_[c].data();
     return 0;
   }

@@ -250,6 +250,10 @@ void Solver::buildUnknownMasks() {
       }
     unknownLineStart_[c].push_back(static_cast<std::int64_t>(unknownList_[c].size()));
   }
+  // Whether any rank has unknowns of a component (a rank without any still takes part in the
+  // others' reductions): decided once, here.
+  const parallel::RankReductionScope ranks(*decomposition_);
+  for (int c = 0; c < 3; ++c) anyUnknowns_[c] = maxAcrossRanks(unknownList_[c].empty() ? 0.0 : 1.0) > 0.0;
 }
 
 void Solver::fillAllGhosts() {

@@ -221,6 +221,7 @@ class Solver {
   std::vector<std::uint8_t> blocked_;     // per cell-field point
   std::vector<std::uint8_t> unknown_[3];  // per face point: solved by the momentum equation
   std::vector<std::int64_t> unknownList_[3];
+  bool anyUnknowns_[3] = {false, false, false};  // some rank has unknowns of the component
   std::vector<std::int64_t> unknownLineStart_[3];  // first unknownList_ entry of each grid line (+ end)
   /// Jacobi row of one momentum unknown for the current step (momentum_team.cpp): the diagonal
   /// with and without the no-slip closure terms and the control-volume face eps, in unknownList_ order.
