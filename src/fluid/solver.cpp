@@ -83,6 +83,9 @@ void Solver::readParams(Params& fluid, const Domain& domain) {
   globalGrid_ = grid_;
   const parallel::Decomposition& given = *decomposition_;
   if (given.distributed() && !fluid.documenting()) {
+    if (given.explicitBoxes())
+      fluid.fail("cells", fmt::format("a grid on {} explicit boxes", given.ranks()),
+                 "a Cartesian layout of the ranks (the fluid grid is split into boxes of whole cells)");
     // This rank's box of cells (a layout without the grid's cuts: rebuilt with them).
     try {
       const parallel::Decomposition withCells(domain, given.layout(), given.ranks(), given.rank(), globalCells);
