@@ -11,7 +11,8 @@
 // in space (superficial inlet, outflow). The coupling's cell fields with their ghosts across the
 // cuts and the monitors' samples (kinetic energy, plane means, flow rates through planes on and
 // off the cuts, probes, line profiles) agree as well. Checkpoints hold the whole grid: written on
-// any layout, they restart the whole grid and the other way round. On one process the
+// any layout, they restart the whole grid and the other way round; the multigrid asked for on
+// several ranks runs as hypre. On one process the
 // decomposition has one rank: the solver is the single-process one.
 #include <gtest/gtest.h>
 
@@ -232,6 +233,33 @@ TEST(DecomposedFluid, CheckpointsRestartOnAnyRankCount) {
     }
     EXPECT_LT(relativeDifference(alone.solver->pressure(), continued.solver->pressure(), {0, 0, 0}), 1e-10);
     EXPECT_LT(relativeDifference(restarted.pressure(), continued.solver->pressure(), offset), 1e-10);
+  }
+}
+
+TEST(DecomposedFluid, MultigridIsSwitchedToHypreOnSeveralRanks) {
+  // fluid.pressure.solver: multigrid (the default) on a decomposed grid: the run takes hypre (the
+  // multigrid needs the whole grid) and matches the whole grid solved by hypre.
+  const parallel::Environment& env = parallel::Environment::instance();
+  const std::string base = "domain: {min: [0, 0, 0], max: [1, 1, 1]}\n"
+                           "fluid:\n  density: 1\n  viscosity: 0.01\n  cells: [12, 12, 12]\n"
+                           "  boundaries:\n    y_max: {type: wall, velocity: [1, 0, 0]}\n"
+                           "  momentum_tolerance: 1.0e-13\n";
+  auto whole = test::makeCase(base + "  pressure: {solver: hypre, tolerance: 1.0e-13}\n");
+  for (int n = 0; n < 3; ++n) whole.solver->step(0.02);
+  const std::string text = base + "  pressure: {solver: multigrid, tolerance: 1.0e-13}\n";
+  Params params = Params::loadString(text, "test.yaml");
+  const Domain domain = Domain::read(params);
+  Solver split(params, domain, Vec3{}, Decomposition(domain, layoutsFor(env.size()).front(), env.size(), env.rank()));
+  for (int n = 0; n < 3; ++n) split.step(0.02);
+  const auto offset = split.decomposition().cellOffset();
+  if (env.size() > 1) {
+    for (int c = 0; c < 3; ++c)
+      EXPECT_LT(relativeDifference(split.velocity(c), whole.solver->velocity(c), offset), 1e-10) << c;
+    EXPECT_LT(relativeDifference(split.pressure(), whole.solver->pressure(), offset), 1e-10);
+  } else {
+    // One rank keeps the multigrid: the two solvers agree to their tolerance.
+    for (int c = 0; c < 3; ++c)
+      EXPECT_LT(relativeDifference(split.velocity(c), whole.solver->velocity(c), offset), 1e-8) << c;
   }
 }
 
