@@ -12,8 +12,8 @@
 // cuts and the monitors' samples (kinetic energy, plane means, flow rates through planes on and
 // off the cuts, probes, line profiles) agree as well. Checkpoints hold the whole grid: written on
 // any layout, they restart the whole grid and the other way round; the multigrid asked for on
-// several ranks runs as hypre. On one process the
-// decomposition has one rank: the solver is the single-process one.
+// several ranks runs as hypre. On one process the decomposition has one rank: the solver is the
+// single-process one.
 #include <gtest/gtest.h>
 
 #include <algorithm>
