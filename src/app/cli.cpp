@@ -72,6 +72,9 @@ int commandCheck(const std::string& caseFile, int threads) {
 
 int commandRun(const std::string& caseFile, RunOptions options) {
   setThreadCount(options.threads);
+  // Under MPI the warnings of reading the case come from rank 0 only.
+  if (parallel::Environment::launched() && parallel::Environment::launchedRank() != 0)
+    spdlog::set_level(spdlog::level::err);
   auto simulation = Simulation::fromFile(caseFile, options);
   // Under MPI only rank 0 reports (progress, timing, warnings); every rank stops on an error, and
   // rank 0 prints it.

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -65,7 +66,13 @@ CaseSettings CaseSettings::read(Params& root, const std::string& caseFile) {
 
 // ------------------------------------------------------------------ fingerprint
 
-std::uint64_t fingerprintOf(const std::vector<ResolvedKey>& keys) {
+std::uint64_t fingerprintOf(const std::vector<ResolvedKey>& unordered) {
+  // By path, not in reading order: a run on several ranks reads fluid.cells earlier (for the
+  // layout) than one on one rank, and both must restart from each other's checkpoints.
+  std::vector<ResolvedKey> keys = unordered;
+  std::stable_sort(keys.begin(), keys.end(), [](const ResolvedKey& a, const ResolvedKey& b) { return a.path < b.path; });
+  keys.erase(std::unique(keys.begin(), keys.end(), [](const ResolvedKey& a, const ResolvedKey& b) { return a.path == b.path; }),
+             keys.end());  // (a key read twice counts once)
   std::uint64_t hash = fnv1a("grainflow-case", 14);
   for (const ResolvedKey& k : keys) {
     const std::string& p = k.path;
@@ -142,11 +149,12 @@ Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptio
   const auto initial = options.restartFile ? dem::InitialParticles::FromCheckpoint : dem::InitialParticles::Insert;
   dem_ = std::make_unique<dem::System>(root, domain_, settings_.gravity, initial, decomposition_);
   checkTimeStep(root);
-  if (decomposition_.distributed() && root.has("fluid"))
+  if (decomposition_.distributed() && root.has("coupling"))
     root.section({"domain"}).fail(
-        "decomposition", fmt::format("{} ranks for a case with a fluid", decomposition_.ranks()),
-        "one rank (run without mpirun): so far only DEM-only cases run on several ranks");
-  if (root.documenting() || root.has("fluid")) fluid_ = std::make_unique<fluid::Solver>(root, domain_, settings_.gravity);
+        "decomposition", fmt::format("{} ranks for a coupled case", decomposition_.ranks()),
+        "one rank (run without mpirun): DEM-only and fluid-only cases run on several ranks, coupled ones not yet");
+  if (root.documenting() || root.has("fluid"))
+    fluid_ = std::make_unique<fluid::Solver>(root, domain_, settings_.gravity, decomposition_);
   if (root.documenting() || root.has("coupling")) {
     if (!fluid_) root.fail("coupling", "a 'coupling' section without a 'fluid' section", "a 'fluid' section as well");
     const auto model =
@@ -374,8 +382,25 @@ RunState Simulation::state() const {
 }
 
 void Simulation::checkHealth() const {
-  dem_->checkHealth(step_, time());
-  if (fluid_) fluid_->checkHealth(step_, time());
+  dem_->checkHealth(step_, time());  // (collective under MPI)
+  if (!fluid_) return;
+  if (!decomposition_.distributed()) {
+    fluid_->checkHealth(step_, time());
+    return;
+  }
+  // The fluid checks its own box: every rank learns whether any rank found a problem, and all stop
+  // with the message of the lowest such rank, naming it.
+  std::string message;
+  try {
+    fluid_->checkHealth(step_, time());
+  } catch (const DivergenceError& e) {
+    message = e.what();
+  }
+  if (!parallel::anyOverRanks(!message.empty())) return;
+  const std::vector<parallel::Bytes> all = parallel::allgather(parallel::Bytes(message.begin(), message.end()));
+  for (std::size_t r = 0; r < all.size(); ++r)
+    if (!all[r].empty())
+      throw DivergenceError(step_, fmt::format("{} (rank {})", std::string(all[r].begin(), all[r].end()), r));
 }
 
 void Simulation::writeOutput() {
@@ -411,8 +436,33 @@ void Simulation::writeOutput() {
     const std::string file = fmt::format("fluid_{:06d}.vti", outputCount_);
     std::vector<io::VtkArray> arrays;
     for (const fluid::NamedCellField& f : fluid_->cellFields()) arrays.push_back(io::cellArray(f.name, f.field));
-    io::writeFileAtomically((dir / file).string(), io::cellFieldsVti(fluid_->grid(), arrays));
-    fluidSeries_.add(time(), file);
+    if (decomposition_.distributed()) {
+      // Each rank its box of cells as a piece in the whole grid's index space; rank 0 the .pvti.
+      const parallel::Decomposition& d = fluid_->decomposition();
+      const CartesianGrid& local = fluid_->grid();
+      CartesianGrid whole = local;
+      whole.origin = domain_.min;
+      for (int a = 0; a < 3; ++a)
+        whole.cells[a] = static_cast<int>(std::lround((domain_.max[a] - domain_.min[a]) / local.spacing[a]));
+      auto pieceName = [&](int rank) { return fmt::format("pieces/fluid_{:06d}_{:04d}.vti", outputCount_, rank); };
+      io::writeFileAtomically((dir / pieceName(d.rank())).string(),
+                              io::cellFieldsVtiPiece(local, d.cellOffset(), whole, arrays));
+      if (rootRank()) {
+        std::vector<std::string> pieces;
+        std::vector<std::array<int, 6>> extents;
+        for (int r = 0; r < d.ranks(); ++r) {
+          const auto o = d.cellOffset(r), n = d.cellCount(r);
+          pieces.push_back(pieceName(r));
+          extents.push_back({o[0], o[0] + n[0], o[1], o[1] + n[1], o[2], o[2] + n[2]});
+        }
+        const std::string parallelFile = fmt::format("fluid_{:06d}.pvti", outputCount_);
+        io::writeFileAtomically((dir / parallelFile).string(), io::cellFieldsPvti(whole, pieces, extents, arrays));
+        fluidSeries_.add(time(), parallelFile);
+      }
+    } else {
+      io::writeFileAtomically((dir / file).string(), io::cellFieldsVti(fluid_->grid(), arrays));
+      fluidSeries_.add(time(), file);
+    }
   }
   ++outputCount_;
   nextOutputTime_ = static_cast<double>(outputCount_) * settings_.outputInterval;

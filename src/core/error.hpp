@@ -39,6 +39,8 @@ class DivergenceError : public Error {
  public:
   DivergenceError(long long step, double time, std::string quantity, std::string where, Vec3 position,
                   std::string detail);
+  /// The same error with its message already written (one rank's error passed on to the others).
+  DivergenceError(long long step, const std::string& message) : Error(message), step_(step) {}
   long long step() const { return step_; }
 
  private:

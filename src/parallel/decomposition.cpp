@@ -195,8 +195,8 @@ Layout Decomposition::autoLayout(const Domain& domain, int ranks, std::array<int
         const int cuts = domain.periodic[a] ? (l[a] > 1 ? l[a] : 0) : l[a] - 1;
         area += cuts * face;
       }
-      // Ties: the layout that cuts the later axes (z, then y) first, found first in this order
-      // reversed; any fixed rule keeps the choice the same on every rank.
+      // Ties: the first layout in this loop's order (fewest ranks along x, then y); a fixed rule
+      // keeps the choice the same on every rank.
       if (fits && area < bestArea * (1.0 - 1e-12)) {
         bestArea = area;
         best = l;

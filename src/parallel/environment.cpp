@@ -26,6 +26,12 @@ bool Environment::launched() {
   return false;
 }
 
+int Environment::launchedRank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"})
+    if (const char* value = std::getenv(name)) return std::atoi(value);
+  return 0;
+}
+
 Environment::Environment() {
   int already = 0;
   MPI_Initialized(&already);

@@ -27,6 +27,9 @@ class Environment {
   /// Whether an MPI launcher (mpirun, mpiexec, srun) started this process, read from its
   /// environment variables, without initialising MPI.
   static bool launched();
+  /// The rank the launcher gave this process (from its environment variables, without
+  /// initialising MPI); 0 when not launched.
+  static int launchedRank();
 
   int rank() const { return rank_; }
   int size() const { return size_; }
