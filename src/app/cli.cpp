@@ -123,10 +123,12 @@ int commandRun(const std::string& caseFile, RunOptions options) {
     if (ranks > 1) {  // (the phases above are rank 0's)
       const auto& p = simulation->dem().particles();
       const std::size_t owned = p.ownedCount();
-      std::printf("MPI                %d ranks (%s); phases of rank 0, which owns %zu particles and holds %zu ghosts "
-                  "(%.0f %%)\n",
-                  ranks, simulation->decomposition().describe().c_str(), owned, p.size() - owned,
-                  owned ? 100.0 * static_cast<double>(p.size() - owned) / static_cast<double>(owned) : 0.0);
+      std::printf("MPI                %d ranks (%s); the phases are rank 0's", ranks,
+                  simulation->dem().decomposition().describe().c_str());
+      if (finalCount > 0)
+        std::printf(", which owns %zu particles and holds %zu ghosts (%.0f %%)", owned, p.size() - owned,
+                    owned ? 100.0 * static_cast<double>(p.size() - owned) / static_cast<double>(owned) : 0.0);
+      std::printf("\n");
     }
     std::printf("\noutput written to %s/\n", s.outputDirectory.c_str());
     if (s.outputInterval > 0.0 && s.writeParticles)

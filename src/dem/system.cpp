@@ -177,7 +177,9 @@ bool System::insertAndRemove(double dt) {
   const std::size_t before = p.size();
   // Existing particles for the inserters' overlap checks: the set's own on one rank; under MPI
   // those every rank owns, plus the ones inserted earlier in this call (the same on every rank).
-  auto addExisting = [&](const std::function<bool(const Vec3&)>& near, OverlapGrid& grid) {
+  // (captures two words: the std::function keeps them in place, no allocation every step)
+  auto addExisting = [this, before](const std::function<bool(const Vec3&)>& near, OverlapGrid& grid) {
+    const ParticleSet& p = particles_;
     if (!distributed_) {
       for (std::size_t i = 0; i < p.size(); ++i)
         if (near(p.position[i])) grid.add(p.position[i], p.radius[i]);
@@ -204,6 +206,9 @@ bool System::insertAndRemove(double dt) {
   bool changed = false;
   for (auto& ins : inserters_) changed |= ins->insert(ctx, time_, dt) > 0;
   if (distributed_ && p.ghost.size() != p.size()) p.ghost.resize(p.size(), 0);
+  hasPendingOrder_ = false;
+  pendingOrder_.clear();
+  if (outlets_.empty() && !(distributed_ && p.size() > before)) return changed;  // (no pass over the particles)
   // Every rank inserted the same particles; under MPI each keeps those in its box. Outlets remove
   // the particles whose centre is inside a deletion box (each rank its own).
   std::vector<std::uint32_t> keep;
@@ -226,7 +231,6 @@ bool System::insertAndRemove(double dt) {
     if (inside) removed = true;
     else keep.push_back(static_cast<std::uint32_t>(i));
   }
-  pendingOrder_.clear();
   hasPendingOrder_ = removed;
   if (removed) {
     // Applied by the rebuild that follows (removal, like insertion, makes one).

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <unordered_map>
 
@@ -365,22 +366,29 @@ std::vector<std::uint32_t> System::exchangeGhosts(double reach) {
 void System::forwardGhosts() {
   ParticleSet& p = particles_;
   std::vector<parallel::Bytes> send(ghostSend_.size());
+  constexpr std::size_t kRecord = 3 * sizeof(Vec3);  // position, velocity, angular velocity
   for (std::size_t n = 0; n < ghostSend_.size(); ++n) {
-    send[n].reserve(ghostSend_[n].size() * 3 * sizeof(Vec3));
-    parallel::Packer out(send[n]);
+    send[n].resize(ghostSend_[n].size() * kRecord);
+    char* out = send[n].data();
     for (std::uint32_t i : ghostSend_[n]) {
-      out.put(p.position[i]);
-      out.put(p.velocity[i]);
-      out.put(p.angularVelocity[i]);
+      std::memcpy(out, &p.position[i], sizeof(Vec3));
+      std::memcpy(out + sizeof(Vec3), &p.velocity[i], sizeof(Vec3));
+      std::memcpy(out + 2 * sizeof(Vec3), &p.angularVelocity[i], sizeof(Vec3));
+      out += kRecord;
     }
   }
-  const std::vector<parallel::Bytes> received = parallel::exchange(decomposition_.neighbourRanks(), send);
+  // (each side knows the sizes from the last list build: one message round)
+  std::vector<std::size_t> receiveBytes(ghostReceive_.size());
+  for (std::size_t n = 0; n < ghostReceive_.size(); ++n) receiveBytes[n] = ghostReceive_[n].size() * kRecord;
+  const std::vector<parallel::Bytes> received =
+      parallel::exchangeKnownSizes(decomposition_.neighbourRanks(), send, receiveBytes);
   for (std::size_t n = 0; n < received.size(); ++n) {
-    parallel::Unpacker in(received[n]);
+    const char* in = received[n].data();
     for (std::uint32_t i : ghostReceive_[n]) {
-      p.position[i] = in.get<Vec3>();
-      p.velocity[i] = in.get<Vec3>();
-      p.angularVelocity[i] = in.get<Vec3>();
+      std::memcpy(&p.position[i], in, sizeof(Vec3));
+      std::memcpy(&p.velocity[i], in + sizeof(Vec3), sizeof(Vec3));
+      std::memcpy(&p.angularVelocity[i], in + 2 * sizeof(Vec3), sizeof(Vec3));
+      in += kRecord;
     }
   }
 }

@@ -83,6 +83,26 @@ std::vector<long long> sumOverRanks(const std::vector<long long>& local) {
   return global;
 }
 
+std::vector<Bytes> exchangeKnownSizes(const std::vector<int>& ranks, const std::vector<Bytes>& send,
+                                      const std::vector<std::size_t>& receiveBytes) {
+  const std::size_t n = ranks.size();
+  if (send.size() != n || receiveBytes.size() != n)
+    throw std::logic_error("parallel::exchangeKnownSizes: one buffer and one size per rank expected");
+  std::vector<Bytes> received(n);
+  std::vector<MPI_Request> requests(2 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (receiveBytes[k] > static_cast<std::size_t>(std::numeric_limits<int>::max()) ||
+        send[k].size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+      throw std::runtime_error("parallel::exchangeKnownSizes: message above 2 GiB");
+    received[k].resize(receiveBytes[k]);
+    MPI_Irecv(received[k].data(), static_cast<int>(receiveBytes[k]), MPI_BYTE, ranks[k], kDataTag, world(), &requests[k]);
+  }
+  for (std::size_t k = 0; k < n; ++k)
+    MPI_Isend(send[k].data(), static_cast<int>(send[k].size()), MPI_BYTE, ranks[k], kDataTag, world(), &requests[n + k]);
+  MPI_Waitall(static_cast<int>(2 * n), requests.data(), MPI_STATUSES_IGNORE);
+  return received;
+}
+
 std::vector<Bytes> allgather(const Bytes& local) {
   const int size = Environment::instance().size();
   int mine = static_cast<int>(local.size());

@@ -22,6 +22,10 @@ std::vector<Bytes> exchange(const std::vector<int>& ranks, const std::vector<Byt
 /// rank needs to know beforehand who sends to it: the sizes go round in one MPI_Alltoall, then only
 /// the non-empty buffers travel. For moves to any rank (a migration after a rebalancing).
 std::vector<Bytes> exchangeWithAny(const std::vector<Bytes>& send);
+/// As exchange(), when each side knows how many bytes it receives from ranks[k] (receiveBytes[k]):
+/// one message round instead of two (the ghost updates between list builds).
+std::vector<Bytes> exchangeKnownSizes(const std::vector<int>& ranks, const std::vector<Bytes>& send,
+                                      const std::vector<std::size_t>& receiveBytes);
 /// Every rank's bytes, indexed by rank.
 std::vector<Bytes> allgather(const Bytes& local);
 /// Rank 0's bytes on every rank.
