@@ -6,7 +6,7 @@
 #
 #   bash bench/liggghts_settled_bed.sh [ROUNDS] [STEPS] [PROCESSES...]
 #   (defaults 5, 2000, 1; each PROCESSES value P: LIGGGHTS on P MPI ranks split along x, against
-#   grainflow on P OpenMP threads). Installs liggghts from Debian if it is missing (root, apt).
+#   grainflow on P OpenMP threads and, for P > 1, grainflow on P MPI ranks split along x). Installs liggghts from Debian if it is missing (root, apt).
 #
 # 1. grainflow_bench builds and settles the bed; GRAINFLOW_SETTLED_BED_CSV writes its positions.
 # 2. ROUNDS rounds, each one, for every P, grainflow_bench BM_DemSettledBed (500 warm-up steps, then
@@ -54,6 +54,17 @@ run_grainflow() {  # run_grainflow P [CSV]: one BM_DemSettledBed run; appends it
 import re, sys
 m = re.search(r"ns_per_particle_step=([0-9.]+)", open(sys.argv[1]).read())
 if not m: sys.exit("grainflow_bench: no ns_per_particle_step (see grainflow.log)")
+print(m.group(1))
+PY
+}
+run_grainflow_mpi() {  # run_grainflow_mpi P: the bed as a case on P MPI ranks x 1 thread; appends ns per particle-step to grainflow_mpi_ns.P
+  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1 \
+    mpirun --oversubscribe -np "$1" "$grainflow_exe" run "gf_mpi.$1.yaml" --threads 1 --output "gf_mpi_out.$1" \
+    --overwrite > "grainflow_mpi.$1.log" 2>&1 || { echo "grainflow on $1 ranks failed (see $work/grainflow_mpi.$1.log)" >&2; exit 1; }
+  python3 - "grainflow_mpi.$1.log" >> "grainflow_mpi_ns.$1" <<'PY'
+import re, sys
+m = re.search(r"([0-9.e+]+) ns per particle-step", open(sys.argv[1]).read())
+if not m: sys.exit(f"grainflow on MPI ranks: no ns per particle-step (see {sys.argv[1]})")
 print(m.group(1))
 PY
 }
@@ -125,16 +136,6 @@ EOF
   : > "liggghts_ns.$p"
 done
 
-for round in $(seq "$rounds"); do
-  for p in "${process_counts[@]}"; do
-    run_grainflow "$p"
-    run_liggghts "$p"
-    echo "round $round, $p thread(s) / rank(s): grainflow $(tail -1 "grainflow_ns.$p" | cut -c1-6) ns," \
-      "LIGGGHTS $(tail -1 "liggghts_ns.$p" | cut -c1-6) ns per particle-step"
-  done
-done
-
-echo "grainflow, the same positions as a case (kinetic energy check) ..."
 end=$(python3 -c "print((500 + $steps) * 2e-6)")
 cat > gf.yaml <<EOF
 case: {name: liggghts_settled_bed_check}
@@ -152,6 +153,28 @@ neighbour_search: {skin: 0.0002}
 monitors:
   - {type: kinetic_energy, interval: 0.001}
 EOF
+# grainflow on P MPI ranks (P > 1): the same bed as a case, split along x as LIGGGHTS splits it,
+# the same 500 + STEPS steps; its figure is the run's wall time per particle-step (all phases, the
+# warm-up steps included).
+for p in "${process_counts[@]}"; do
+  if [ "$p" -gt 1 ]; then
+    sed -e "s/domain: {min: \[0, 0, 0\], max: \[0.06, 0.06, 0.2\]}/domain: {min: [0, 0, 0], max: [0.06, 0.06, 0.2], decomposition: [$p, 1, 1]}\nparallel: {rebalance_interval: 0}/" \
+      -e '/^monitors:/,$d' gf.yaml > "gf_mpi.$p.yaml"
+  fi
+done
+
+for round in $(seq "$rounds"); do
+  for p in "${process_counts[@]}"; do
+    run_grainflow "$p"
+    run_liggghts "$p"
+    [ "$p" -gt 1 ] && run_grainflow_mpi "$p"
+    echo "round $round, $p thread(s) / rank(s): grainflow $(tail -1 "grainflow_ns.$p" | cut -c1-6) ns," \
+      "LIGGGHTS $(tail -1 "liggghts_ns.$p" | cut -c1-6) ns per particle-step" \
+      "$([ "$p" -gt 1 ] && echo "(grainflow on $p MPI ranks: $(tail -1 "grainflow_mpi_ns.$p" | cut -c1-6) ns)")"
+  done
+done
+
+echo "grainflow, the same positions as a case (kinetic energy check) ..."
 "$grainflow_exe" run gf.yaml --threads "$(nproc)" --output gf_out --overwrite --quiet
 python3 - gf_out/kinetic_energy.csv "${process_counts[@]}" <<'PY'
 import csv, re, statistics, sys
@@ -180,6 +203,13 @@ for p in sys.argv[2:]:
           f"medians: {statistics.median(theirs) / statistics.median(ours):.2f} x)")
     print(f"result settled_bed procs={p} peer={min(theirs):.6g} grainflow={min(ours):.6g} "
           f"peer_median={statistics.median(theirs):.6g} grainflow_median={statistics.median(ours):.6g}")
+    try:
+        ranks = [float(x) for x in open(f"grainflow_mpi_ns.{p}")]
+        print(f"grainflow ({p} MPI ranks x 1 thread): fastest {min(ranks):.1f}, median {statistics.median(ranks):.1f} ns per particle-step")
+        print(f"result settled_bed_mpi procs={p} peer={min(theirs):.6g} grainflow={min(ranks):.6g} "
+              f"peer_median={statistics.median(theirs):.6g} grainflow_median={statistics.median(ranks):.6g}")
+    except FileNotFoundError:
+        pass
     print(f"check settled_bed_kinetic_energy procs={p} value={worst:.6g} tolerance={tolerance} "
           f"pass={int(worst <= tolerance)} steps={max(common)}")
 PY

@@ -35,8 +35,7 @@ Domain Domain::read(Params& root) {
       d.decomposition[a] = static_cast<int>(layout[a]);
     }
   } else {
-    const std::string word = p.choice(layoutKey, {"auto"}, "auto");
-    (void)word;
+    p.choice(layoutKey, {"auto"}, "auto");  // (auto: the layout is chosen when the rank count is known)
   }
   return d;
 }

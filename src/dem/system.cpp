@@ -526,8 +526,7 @@ void System::step(double dt) {
     // One vote for all ranks (the same rebuild steps as on one rank): the displacements of the
     // particles every rank owns, and whether any rank's particles came or went.
     ScopedPhase timer(timers_, Phase::Communication);
-    const auto [largest, second] = ownedLargestMoves();
-    rebuildNow = parallel::anyOverRanks(rebuildNow || needsRebuild(largest, second));
+    rebuildNow = voteForRebuild(rebuildNow);
   } else {
     rebuildNow = rebuildNow || needsRebuild(std::sqrt(displacement2.first), std::sqrt(displacement2.second));
   }
@@ -575,7 +574,19 @@ void System::checkHealth(long long step, double time) const {
   // the team (a pass over all particles, on the main thread's path between DEM steps otherwise).
   const auto n = static_cast<std::int64_t>(p.size());
   std::int64_t first = n;
-  if (runsOnCallingThread(n)) {
+  // Under MPI first one branch-free pass over every particle, ghosts included (a ghost is a copy:
+  // unhealthy only if its owner is), and the search that skips ghosts only if it finds something.
+  bool suspect = !distributed_;
+  if (distributed_)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Vec3 x = p.position[i], v = p.velocity[i], w = p.angularVelocity[i];
+      bool bad = !isFinite(x) || !isFinite(v) || !isFinite(w);
+      for (int a = 0; a < 3; ++a) bad |= !domain_.periodic[a] && (x[a] < domain_.min[a] || x[a] > domain_.max[a]);
+      suspect |= bad;
+    }
+  if (!suspect) {
+    // (nothing on this rank)
+  } else if (runsOnCallingThread(n)) {
     for (std::int64_t i = 0; i < n && first == n; ++i)
       if (problemOf(static_cast<std::size_t>(i)) != None) first = i;
   } else {

@@ -186,8 +186,9 @@ class System {
   /// new boxes for the owned particles of `order` when they are out of balance. Returns whether
   /// decomposition_ changed (the migration that follows then sends to any rank).
   bool rebalanceIfDue(const std::vector<std::uint32_t>& order, double reach);
-  /// Largest two displacements since the last build of the particles this rank owns, over all ranks.
-  std::pair<double, double> ownedLargestMoves() const;
+  /// Under MPI: whether the lists are rebuilt this step, the same answer on every rank (one
+  /// collective). `localReason`: particles came or went on this rank.
+  bool voteForRebuild(bool localReason) const;
 
   Domain domain_;
   parallel::Decomposition decomposition_;

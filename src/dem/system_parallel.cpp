@@ -34,18 +34,41 @@ struct PairKeyHash {
   }
 };
 
-/// Full state of one particle (migration and checkpoints).
-void packParticle(const ParticleSet& p, std::size_t i, parallel::Packer& out, bool columns) {
+/// What every copy of a particle carries: identity, size, order key, position and velocities (a
+/// ghost: no more).
+void packMotion(const ParticleSet& p, std::size_t i, parallel::Packer& out) {
   out.put(p.id[i]);
   out.put(p.type[i]);
   out.put(p.radius[i]);
   out.put(p.mass[i]);
+  out.put(p.orderKey[i]);
   out.put(p.position[i]);
   out.put(p.velocity[i]);
   out.put(p.angularVelocity[i]);
+}
+
+std::size_t unpackMotion(ParticleSet& p, parallel::Unpacker& in) {
+  const auto id = in.get<std::int64_t>();
+  const auto type = in.get<std::int32_t>();
+  const auto radius = in.get<double>();
+  const auto mass = in.get<double>();
+  const auto key = in.get<std::uint64_t>();
+  const auto x = in.get<Vec3>();
+  const auto v = in.get<Vec3>();
+  const auto w = in.get<Vec3>();
+  const std::size_t i = p.add(id, type, radius, 1.0, x, v, w);
+  p.mass[i] = mass;  // (as sent: add() computes it from a density)
+  p.orderKey[i] = key;
+  return i;
+}
+
+/// Full state of one particle (migration and checkpoints): the motion, the forces of the last
+/// evaluation (the next half kick uses them), the coupling's external forces and, with `columns`,
+/// the set's columns.
+void packParticle(const ParticleSet& p, std::size_t i, parallel::Packer& out, bool columns) {
+  packMotion(p, i, out);
   out.put(p.force[i]);
   out.put(p.torque[i]);
-  out.put(p.orderKey[i]);
   const bool external = p.hasExternalForces;
   out.put(static_cast<std::uint8_t>(external));
   if (external) {
@@ -58,18 +81,9 @@ void packParticle(const ParticleSet& p, std::size_t i, parallel::Packer& out, bo
 }
 
 std::size_t unpackParticle(ParticleSet& p, parallel::Unpacker& in, bool columns) {
-  const auto id = in.get<std::int64_t>();
-  const auto type = in.get<std::int32_t>();
-  const auto radius = in.get<double>();
-  const auto mass = in.get<double>();
-  const auto x = in.get<Vec3>();
-  const auto v = in.get<Vec3>();
-  const auto w = in.get<Vec3>();
-  const std::size_t i = p.add(id, type, radius, 1.0, x, v, w);
-  p.mass[i] = mass;
+  const std::size_t i = unpackMotion(p, in);
   p.force[i] = in.get<Vec3>();
   p.torque[i] = in.get<Vec3>();
-  p.orderKey[i] = in.get<std::uint64_t>();
   if (in.get<std::uint8_t>() != 0) {
     const Vec3 f = in.get<Vec3>(), t = in.get<Vec3>();
     if (f != Vec3{} || t != Vec3{}) {
@@ -85,30 +99,10 @@ std::size_t unpackParticle(ParticleSet& p, parallel::Unpacker& in, bool columns)
   return i;
 }
 
-/// What a ghost needs: identity, size, order key, position and velocities.
-void packGhost(const ParticleSet& p, std::size_t i, parallel::Packer& out) {
-  out.put(p.id[i]);
-  out.put(p.type[i]);
-  out.put(p.radius[i]);
-  out.put(p.mass[i]);
-  out.put(p.orderKey[i]);
-  out.put(p.position[i]);
-  out.put(p.velocity[i]);
-  out.put(p.angularVelocity[i]);
-}
+void packGhost(const ParticleSet& p, std::size_t i, parallel::Packer& out) { packMotion(p, i, out); }
 
 std::size_t unpackGhost(ParticleSet& p, parallel::Unpacker& in) {
-  const auto id = in.get<std::int64_t>();
-  const auto type = in.get<std::int32_t>();
-  const auto radius = in.get<double>();
-  const auto mass = in.get<double>();
-  const auto key = in.get<std::uint64_t>();
-  const auto x = in.get<Vec3>();
-  const auto v = in.get<Vec3>();
-  const auto w = in.get<Vec3>();
-  const std::size_t i = p.add(id, type, radius, 1.0, x, v, w);
-  p.mass[i] = mass;
-  p.orderKey[i] = key;
+  const std::size_t i = unpackMotion(p, in);
   // (a rank that owns no particle has an empty flag array, which add() does not grow)
   if (p.ghost.size() < p.size()) p.ghost.resize(p.size(), 0);
   p.ghost[i] = 1;
@@ -123,27 +117,39 @@ int neighbourSlot(const std::vector<int>& neighbours, int rank) {
 
 }  // namespace
 
-std::pair<double, double> System::ownedLargestMoves() const {
+bool System::voteForRebuild(bool localReason) const {
+  // The two largest displacements since the last build of the particles this rank owns, and
+  // whether this rank has a reason of its own (particles came or went, lists out of date), in one
+  // allgather: every rank then takes the same decision as one rank would.
   const ParticleSet& p = particles_;
   double first = 0.0, second = 0.0;
-  if (positionAtBuild_.size() == p.size())
+  if (positionAtBuild_.size() == p.size()) {
+    const bool flags = p.ghost.size() == p.size();
     for (std::size_t i = 0; i < p.size(); ++i) {
-      if (p.isGhost(i)) continue;
       const Vec3 d = p.position[i] - positionAtBuild_[i];
-      const double m = normSquared(box_.anyPeriodic ? box_.minimumImage(d) : d);
+      // (a ghost counts 0: its owner counts its displacement; a select, not a branch)
+      const double m = flags && p.ghost[i] ? 0.0 : normSquared(box_.anyPeriodic ? box_.minimumImage(d) : d);
       second = std::max(second, std::min(first, m));
       first = std::max(first, m);
     }
-  if (distributed_) {
-    const std::vector<double> firsts = parallel::allgather(first), seconds = parallel::allgather(second);
-    first = second = 0.0;
-    for (std::size_t r = 0; r < firsts.size(); ++r)
-      for (double m : {firsts[r], seconds[r]}) {
-        second = std::max(second, std::min(first, m));
-        first = std::max(first, m);
-      }
   }
-  return {std::sqrt(first), std::sqrt(second)};
+  localReason = localReason || list_.rows() != p.size() || positionAtBuild_.size() != p.size();
+  parallel::Bytes mine;
+  parallel::Packer out(mine);
+  out.put(first);
+  out.put(second);
+  out.put(static_cast<std::uint8_t>(localReason));
+  first = second = 0.0;
+  bool anyReason = false;
+  for (const parallel::Bytes& bytes : parallel::allgather(mine)) {
+    parallel::Unpacker in(bytes);
+    for (double m : {in.get<double>(), in.get<double>()}) {
+      second = std::max(second, std::min(first, m));
+      first = std::max(first, m);
+    }
+    anyReason = anyReason || in.get<std::uint8_t>() != 0;
+  }
+  return anyReason || needsRebuild(std::sqrt(first), std::sqrt(second));
 }
 
 std::vector<PairHistoryRecord> System::pairRecords(const std::vector<std::uint8_t>& ofParticle) const {
@@ -257,8 +263,6 @@ void System::migrateAndExchangeGhosts(const std::vector<std::uint32_t>& order, b
   }
   std::vector<PairHistoryRecord> pairs = pairRecords(leaving);
   std::vector<WallHistoryRecord> walls = wallRecords(leaving);
-  auto byParticle = [](const auto& a, const auto& b) { return a.first < b.first; };
-  (void)byParticle;
   std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a.a < b.a; });
   std::sort(walls.begin(), walls.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
   std::vector<parallel::Bytes> send(leave.size());
@@ -450,8 +454,6 @@ void System::save(BinaryWriter& out) const {
   }
   ParticleSet all;
   std::vector<Vec3> atBuild;
-  long long removedCounts = 0;
-  (void)removedCounts;
   if (!distributed_) {
     p.save(out);
     out.putVector(positionAtBuild_);
