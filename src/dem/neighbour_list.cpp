@@ -153,6 +153,29 @@ std::vector<std::uint32_t> orderByKey(const std::vector<std::uint64_t>& key) {
   return order;
 }
 
+/// Order of `subset` (indices into the arrays) by (orderKey, id).
+void sortByKeyThenId(std::vector<std::uint32_t>& subset, const ParticleSet& p) {
+  auto before = [&](std::uint32_t a, std::uint32_t b) {
+    return p.orderKey[a] != p.orderKey[b] ? p.orderKey[a] < p.orderKey[b] : p.id[a] < p.id[b];
+  };
+  if (std::is_sorted(subset.begin(), subset.end(), before)) return;
+  // Radix sort by key (stable), then each run of equal keys by id.
+  std::vector<std::uint64_t> keys(subset.size());
+  for (std::size_t k = 0; k < subset.size(); ++k) keys[k] = p.orderKey[subset[k]];
+  const std::vector<std::uint32_t> byKey = orderByKey(keys);
+  std::vector<std::uint32_t> sorted(subset.size());
+  for (std::size_t k = 0; k < subset.size(); ++k) sorted[k] = subset[byKey[k]];
+  for (std::size_t a = 0; a < sorted.size();) {
+    std::size_t b = a + 1;
+    while (b < sorted.size() && p.orderKey[sorted[b]] == p.orderKey[sorted[a]]) ++b;
+    if (b - a > 1)
+      std::sort(sorted.begin() + static_cast<std::ptrdiff_t>(a), sorted.begin() + static_cast<std::ptrdiff_t>(b),
+                [&](std::uint32_t x, std::uint32_t y) { return p.id[x] < p.id[y]; });
+    a = b;
+  }
+  subset.swap(sorted);
+}
+
 std::vector<std::uint32_t> mortonOrder(const std::vector<Vec3>& x, const Vec3& boxMin, const Vec3& /*boxMax*/,
                                        double cellSize) {
   std::vector<std::uint64_t> key(x.size());

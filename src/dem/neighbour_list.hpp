@@ -152,6 +152,9 @@ struct CellGrid {
 std::uint64_t mortonCode(const Vec3& x, const Vec3& boxMin, double cellSize);
 /// Indices sorted by key, ties in index order (stable radix sort).
 std::vector<std::uint32_t> orderByKey(const std::vector<std::uint64_t>& key);
+/// Sorts `subset` (indices into p) by (orderKey, id), the order of the particle arrays
+/// (ParticleSet::orderKey): a radix sort by key, then runs of equal keys by id; no work when sorted.
+void sortByKeyThenId(std::vector<std::uint32_t>& subset, const ParticleSet& p);
 /// Order of particles along a Morton (Z-order) curve of their cells, ties by index.
 std::vector<std::uint32_t> mortonOrder(const std::vector<Vec3>& x, const Vec3& boxMin, const Vec3& boxMax,
                                        double cellSize);

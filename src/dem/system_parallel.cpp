@@ -355,9 +355,7 @@ std::vector<std::uint32_t> System::exchangeGhosts(double reach) {
   // One order for owned particles and ghosts together: (orderKey, id), the same on every rank.
   std::vector<std::uint32_t> permutation(p.size());
   for (std::size_t i = 0; i < permutation.size(); ++i) permutation[i] = static_cast<std::uint32_t>(i);
-  std::sort(permutation.begin(), permutation.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return p.orderKey[a] != p.orderKey[b] ? p.orderKey[a] < p.orderKey[b] : p.id[a] < p.id[b];
-  });
+  sortByKeyThenId(permutation, p);
   p.gather(permutation);
   std::vector<std::uint32_t> newIndex(permutation.size());
   for (std::size_t k = 0; k < permutation.size(); ++k) newIndex[permutation[k]] = static_cast<std::uint32_t>(k);
@@ -491,9 +489,7 @@ void System::save(BinaryWriter& out) const {
     }
     std::vector<std::uint32_t> order(all.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
-    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return all.orderKey[a] != all.orderKey[b] ? all.orderKey[a] < all.orderKey[b] : all.id[a] < all.id[b];
-    });
+    sortByKeyThenId(order, all);
     all.gather(order);
     std::vector<Vec3> sortedAtBuild(order.size());
     for (std::size_t k = 0; k < order.size(); ++k) sortedAtBuild[k] = atBuild[order[k]];
