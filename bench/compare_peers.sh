@@ -215,7 +215,8 @@ for r in results.get(("cube", "1"), []):
           f"{'yes' if ratio >= 20 else 'no'} |")
 print()
 print("Figures: the fastest of the alternating rounds of each code, set-up and output not counted. "
-      "Processes: MPI ranks of the peer, OpenMP threads of grainflow.")
+      "Processes: MPI ranks of the peer, OpenMP threads of grainflow (the row 'grainflow on MPI ranks': "
+      "MPI ranks x 1 thread, the run's wall time per particle-step with its warm-up steps).")
 
 # --- same-problem checks
 print()
