@@ -7,16 +7,12 @@
 
 #include <stdexcept>
 
+#include "domain_box.hpp"
+
 namespace gf::parallel {
 namespace {
 
-Domain box(Vec3 max, std::array<bool, 3> periodic = {false, false, false}) {
-  Domain d;
-  d.min = {0, 0, 0};
-  d.max = max;
-  d.periodic = periodic;
-  return d;
-}
+using testing::box;
 
 TEST(Decomposition, AutoLayoutCutsAcrossTheLongAxis) {
   // A tall column: cuts across z have the smallest area.

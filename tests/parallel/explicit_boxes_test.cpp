@@ -9,17 +9,12 @@
 #include <stdexcept>
 
 #include "parallel/decomposition.hpp"
+#include "domain_box.hpp"
 
 namespace gf::parallel {
 namespace {
 
-Domain box(Vec3 max, std::array<bool, 3> periodic = {false, false, false}) {
-  Domain d;
-  d.min = {0, 0, 0};
-  d.max = max;
-  d.periodic = periodic;
-  return d;
-}
+using testing::box;
 
 // A bisection of [0,1] x [0,1] x [0,2]: z cut at 0.5, the lower slab cut in x at 0.3, the upper
 // one in y at 0.6, then the last box cut in x at 0.7 (boxes of unequal shapes, as RCB makes).
