@@ -53,9 +53,7 @@ System::System(Params& root, const Domain& domain, const Vec3& gravity, InitialP
   // 150,000 spheres: ~0.1 s of the restart).
   if (initial == InitialParticles::FromCheckpoint) return;
   insertAndRemove(0.0);
-  rebuild(takePendingOrder(), list_.rows());
-  updateInverseInertia();
-  computeForces(0.0, 0.0);
+  refresh();  // (applies the initial insertion's removals: particles of other ranks, outlets)
   checkBoxesHoldTheReach(root);
 }
 
@@ -241,9 +239,7 @@ bool System::insertAndRemove(double dt) {
 }
 
 void System::refresh() {
-  std::vector<std::uint32_t> order(particles_.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
-  rebuild(std::move(order), list_.rows());
+  rebuild(takePendingOrder(), list_.rows());
   updateInverseInertia();
   computeForces(0.0, 0.0);
 }
@@ -276,14 +272,9 @@ void System::rebuild(std::vector<std::uint32_t> order, std::size_t listedRows) {
   const bool reorder = neighbour_.reorderInterval > 0 && rebuilds_ % neighbour_.reorderInterval == 0;
   const double mortonCell = maxDiameter + skin_;
   std::vector<std::int64_t> previous;
-  bool identity = false;
-  if (distributed_) {
-    migrateAndExchangeGhosts(order, reorder, mortonCell, maxDiameter + skin_, previous, listedRows);
-  } else {
-    orderLocally(order, reorder, mortonCell, previous, listedRows);
-    identity = order.size() == p.size();
-    for (std::size_t k = 0; identity && k < order.size(); ++k) identity = order[k] == k;
-  }
+  bool identity = false;  // no particle moved in the arrays, none came or went
+  if (distributed_) migrateAndExchangeGhosts(order, reorder, mortonCell, maxDiameter + skin_, previous, listedRows);
+  else identity = orderLocally(order, reorder, mortonCell, previous, listedRows);
   const bool rollingHistory = table_.rollingLaw() == RollingLaw::Epsd;
   list_.build(p, box_, domain_.min, domain_.max, skin_, previous, rollingHistory);
   wallList_.build(p, primitives_, skin_, previous, rollingHistory);
@@ -305,7 +296,7 @@ void System::assignMortonKeys(const std::vector<std::uint32_t>& subset, double m
   });
 }
 
-void System::orderLocally(std::vector<std::uint32_t>& order, bool reorder, double mortonCell,
+bool System::orderLocally(std::vector<std::uint32_t>& order, bool reorder, double mortonCell,
                           std::vector<std::int64_t>& previous, std::size_t listedRows) {
   ParticleSet& p = particles_;
   if (reorder && !order.empty()) assignMortonKeys(order, mortonCell);
@@ -315,6 +306,7 @@ void System::orderLocally(std::vector<std::uint32_t>& order, bool reorder, doubl
   if (!identity) p.gather(order);
   previous.resize(order.size());
   for (std::size_t k = 0; k < order.size(); ++k) previous[k] = order[k] < listedRows ? order[k] : -1;
+  return identity;
 }
 
 const std::vector<std::size_t>& System::threadBlocks() {
@@ -539,27 +531,22 @@ TimeStepStatus System::checkTimeStep(double dt) const { return dem::checkTimeSte
 void System::checkHealth(long long step, double time) const {
   const ParticleSet& p = particles_;
   enum Problem : int { None, NotFinite, Outside };
-  auto problemOf = [&](std::size_t i) {
-    if (p.isGhost(i)) return None;  // (its owner checks it)
+  auto kindOf = [&](std::size_t i) {
     if (!isFinite(p.position[i]) || !isFinite(p.velocity[i]) || !isFinite(p.angularVelocity[i])) return NotFinite;
     for (int a = 0; a < 3; ++a)
       if (!domain_.periodic[a] && (p.position[i][a] < domain_.min[a] || p.position[i][a] > domain_.max[a])) return Outside;
     return None;
   };
+  auto problemOf = [&](std::size_t i) { return p.isGhost(i) ? None : kindOf(i); };  // (a ghost's owner checks it)
   // The first unhealthy particle (lowest index: the same report on any thread count), found by
   // the team (a pass over all particles, on the main thread's path between DEM steps otherwise).
   const auto n = static_cast<std::int64_t>(p.size());
   std::int64_t first = n;
-  // Under MPI first one branch-free pass over every particle, ghosts included (a ghost is a copy:
-  // unhealthy only if its owner is), and the search that skips ghosts only if it finds something.
+  // Under MPI first one pass over every particle, ghosts included (a ghost is a copy: unhealthy
+  // only if its owner is), without the ghost test; the search that skips ghosts only if it finds
+  // something.
   bool suspect = !distributed_;
-  if (distributed_)
-    for (std::int64_t i = 0; i < n; ++i) {
-      const Vec3 x = p.position[i], v = p.velocity[i], w = p.angularVelocity[i];
-      bool bad = !isFinite(x) || !isFinite(v) || !isFinite(w);
-      for (int a = 0; a < 3; ++a) bad |= !domain_.periodic[a] && (x[a] < domain_.min[a] || x[a] > domain_.max[a]);
-      suspect |= bad;
-    }
+  for (std::int64_t i = 0; distributed_ && i < n && !suspect; ++i) suspect = kindOf(static_cast<std::size_t>(i)) != None;
   if (!suspect) {
     // (nothing on this rank)
   } else if (runsOnCallingThread(n)) {
@@ -615,12 +602,17 @@ std::vector<WallLoad> System::wallLoads() const {
     loads[w].force -= f;
     loads[w].torque -= cross(wallList_.point[k] - wallCentre_[w], f);
   }
-  if (distributed_)
-    for (WallLoad& l : loads)
+  if (distributed_) {  // (every wall's force and torque in one collective)
+    std::vector<double> sums;
+    for (const WallLoad& l : loads)
+      for (int a = 0; a < 3; ++a) sums.insert(sums.end(), {l.force[a], l.torque[a]});
+    sums = parallel::sumOverRanks(sums);
+    for (std::size_t w = 0; w < loads.size(); ++w)
       for (int a = 0; a < 3; ++a) {
-        l.force[a] = parallel::sumOverRanks(l.force[a]);
-        l.torque[a] = parallel::sumOverRanks(l.torque[a]);
+        loads[w].force[a] = sums[6 * w + 2 * a];
+        loads[w].torque[a] = sums[6 * w + 2 * a + 1];
       }
+  }
   return loads;
 }
 
@@ -688,10 +680,9 @@ EnergyBalance System::energy() const {
     }
   }
   if (distributed_) {
-    e.translational = parallel::sumOverRanks(e.translational);
-    e.rotational = parallel::sumOverRanks(e.rotational);
-    e.gravitational = parallel::sumOverRanks(e.gravitational);
-    e.elastic = parallel::sumOverRanks(e.elastic);
+    const std::vector<double> sums =
+        parallel::sumOverRanks(std::vector<double>{e.translational, e.rotational, e.gravitational, e.elastic});
+    e.translational = sums[0], e.rotational = sums[1], e.gravitational = sums[2], e.elastic = sums[3];
   }
   return e;
 }

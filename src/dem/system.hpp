@@ -168,8 +168,8 @@ class System {
   /// orderKey = Morton code of the cell of each particle of `subset`.
   void assignMortonKeys(const std::vector<std::uint32_t>& subset, double mortonCell);
   // Single-rank and MPI parts of a rebuild: the order of the arrays and, per new index, the index
-  // the particle had before (-1: new here).
-  void orderLocally(std::vector<std::uint32_t>& order, bool reorder, double mortonCell,
+  // the particle had before (-1: new here); orderLocally returns whether no particle moved in the arrays.
+  bool orderLocally(std::vector<std::uint32_t>& order, bool reorder, double mortonCell,
                     std::vector<std::int64_t>& previous, std::size_t listedRows);
   void migrateAndExchangeGhosts(const std::vector<std::uint32_t>& order, bool reorder, double mortonCell,
                                 double ghostReach, std::vector<std::int64_t>& previous, std::size_t listedRows);

@@ -83,6 +83,12 @@ std::vector<long long> sumOverRanks(const std::vector<long long>& local) {
   return global;
 }
 
+std::vector<double> sumOverRanks(const std::vector<double>& local) {
+  std::vector<double> global(local.size());
+  MPI_Allreduce(local.data(), global.data(), static_cast<int>(local.size()), MPI_DOUBLE, MPI_SUM, world());
+  return global;
+}
+
 std::vector<Bytes> exchangeKnownSizes(const std::vector<int>& ranks, const std::vector<Bytes>& send,
                                       const std::vector<std::size_t>& receiveBytes) {
   const std::size_t n = ranks.size();

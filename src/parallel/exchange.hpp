@@ -32,6 +32,8 @@ std::vector<Bytes> allgather(const Bytes& local);
 Bytes broadcastFromRoot(const Bytes& local);
 /// Element-wise sums over all ranks (every rank passes the same length).
 std::vector<long long> sumOverRanks(const std::vector<long long>& local);
+/// Element by element, in one collective.
+std::vector<double> sumOverRanks(const std::vector<double>& local);
 /// Every rank's bytes on rank 0, indexed by rank (empty on the other ranks).
 std::vector<Bytes> gatherToRoot(const Bytes& local);
 double maxOverRanks(double local);
