@@ -160,6 +160,7 @@ Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptio
     const auto model =
         fluid_->model() == fluid::MomentumModel::A ? coupling::ExchangeModel::A : coupling::ExchangeModel::B;
     coupler_ = std::make_unique<coupling::Coupler>(root, fluid_->grid(), domain_.periodic, settings_.gravity, model);
+    coupler_->setCoarseGrainingByMaterial(dem_->coarseGrainingByMaterial());  // insertion[].coarse_graining
     if (!root.documenting()) initialiseCoupling();
   }
 

@@ -45,7 +45,7 @@ CouplerSettings readSettings(Params& s) {
                          "smoothing length l of the implicit diffusion of eps (D = l^2/dt); 0 = off; auto = the "
                          "seed 003 law: l/d32 of Tab. 4.15 at the coarse-graining factor (8.06 up to 25, 10.3 at 33, "
                          "17.0 at 50, linear in between and beyond), scaled by (1e-3 / <phi_p>)^(1/3) (eq. 4.10), "
-                         "<phi_p> and the Sauter mean primary diameter d32 of the particles at the first coupling "
+                         "<phi_p> and the Sauter mean parcel diameter d32 of the particles at the first coupling "
                          "step; the length chosen is printed",
                          Range::nonNegative()};
   if (!s.documenting() && s.isWord("smoothing_length", "auto")) {
@@ -462,6 +462,10 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   const ForceSwitches& w = settings_.forces;
   const double k3 = settings_.coarseGraining.fluidForceScale();
   const double dPrimFactor = 1.0 / settings_.coarseGraining.factor;
+  // coarse graining per insertion (coarse_graining.hpp): 1/k and k^3 by the particle's material
+  const double* const inverseK = settings_.coarseGraining.uniform() ? nullptr : settings_.coarseGraining.inverseByMaterial.data();
+  const double* const k3ByMaterial = settings_.coarseGraining.particlesPerParcelByMaterial.data();
+  const std::int32_t* const material = particles.type.data();
   const bool modelB = settings_.model == ExchangeModel::B;
   const double rho = fluid.density, mu = fluid.viscosity;
   const double epsFloor = std::max(settings_.minVoidFraction, 1e-6);
@@ -485,7 +489,8 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   Vec3* const slipOut = columns.slip;
   Vec3* const otherOut = columns.other;
   const Vec3* const previousSlipIn = columns.previousSlip;
-  auto forceBlock = [&, rho, mu, epsFloor, dPrimFactor, k3, betaOut, slipOut, otherOut, previousSlipIn](
+  auto forceBlock = [&, rho, mu, epsFloor, dPrimFactor, k3, inverseK, k3ByMaterial, material, betaOut, slipOut, otherOut,
+                     previousSlipIn](
                         const double* samples, std::size_t begin, int count, std::array<double, 4>& sums) {
     double sum[4] = {sums[0], sums[1], sums[2], sums[3]};  // in registers, not through the reference
     // 1 <= count <= kBlock (the one caller below passes min(kBlock, end - p) with p < end). Said
@@ -520,7 +525,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       const Vec3 uf{s[q][0], s[q][1], s[q][2]};
       eps[q] = std::clamp(s[q][3], epsFloor, 1.0);
       const Vec3 slip = uf - particles.velocity[p];
-      dPrimOf[q] = 2.0 * particles.radius[p] * dPrimFactor;
+      dPrimOf[q] = 2.0 * particles.radius[p] * (inverseK ? inverseK[material[p]] : dPrimFactor);
       slipSquared[q] = dot(slip, slip);
       slipOut[p] = slip;
     }
@@ -536,9 +541,10 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       const std::size_t p = begin + q;
       const Vec3 slip = slipOut[p];
       const double d = 2.0 * particles.radius[p];
-      const double dPrim = d * dPrimFactor;
+      const double dPrim = dPrimOf[q];
+      const double k3p = inverseK ? k3ByMaterial[material[p]] : k3;
       const double volume = force::sphereVolume(d);  // parcel volume = k^3 primary volumes
-      const double beta = w.drag ? k3 * particleDragCoefficient(mu, dPrim, correction[q]) : 0.0;
+      const double beta = w.drag ? k3p * particleDragCoefficient(mu, dPrim, correction[q]) : 0.0;
       const Vec3 fDrag = force::drag(beta, slip);
       // pressure and viscous forces: given back to the fluid in model B, on the particle only in
       // model A (summed first, then assigned: no reference chosen at run time, which kept both
@@ -557,9 +563,9 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       if (cW >= 0) {
         const Vec3 vorticity{s[q][cW], s[q][cW + 1], s[q][cW + 2]};
         const Vec3 relOmega = force::relativeRotation(particles.angularVelocity[p], vorticity);
-        if (w.saffmanMeiLift) exchangedOther += k3 * force::saffmanMeiLift(rho, mu, dPrim, slip, vorticity);
-        if (w.magnusLift) exchangedOther += k3 * force::magnusLift(rho, dPrim, relOmega, slip);
-        if (w.fluidTorque) torque = k3 * force::rotationalTorque(mu, dPrim, relOmega);
+        if (w.saffmanMeiLift) exchangedOther += k3p * force::saffmanMeiLift(rho, mu, dPrim, slip, vorticity);
+        if (w.magnusLift) exchangedOther += k3p * force::magnusLift(rho, dPrim, relOmega, slip);
+        if (w.fluidTorque) torque = k3p * force::rotationalTorque(mu, dPrim, relOmega);
       }
       betaOut[p] = beta;
       if (keepOther) otherOut[p] = exchangedOther;
@@ -661,18 +667,19 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
 }
 
 void Coupler::updateSizeStatistics(const dem::ParticleSet& particles, bool classVelocities) {
-  const double alpha = settings_.coarseGraining.factor;
+  const CoarseGraining& cg = settings_.coarseGraining;
   bool known = sizeClasses_.count() > 0;
   for (std::size_t p = 0; known && p < particles.size(); ++p) {
-    const double d = 2.0 * particles.radius[p] / alpha;
+    const double d = 2.0 * particles.radius[p] / cg.factorOf(particles.type[p]);
     known = sizeClasses_.binned() || sizeClasses_.diameters()[static_cast<std::size_t>(sizeClasses_.classOf(d))] == d;
   }
   if (!known) {
     std::vector<double> diameters(particles.size());
-    for (std::size_t p = 0; p < particles.size(); ++p) diameters[p] = 2.0 * particles.radius[p] / alpha;
+    for (std::size_t p = 0; p < particles.size(); ++p)
+      diameters[p] = 2.0 * particles.radius[p] / cg.factorOf(particles.type[p]);
     sizeClasses_ = SizeClasses(std::move(diameters));
   }
-  computeCellSizeStatistics(topology_, particles, alpha, sizeClasses_, sizeStats_, cellOfParticle_, classOfParticle_,
+  computeCellSizeStatistics(topology_, particles, cg, sizeClasses_, sizeStats_, cellOfParticle_, classOfParticle_,
                             classVelocities);
 }
 
@@ -687,7 +694,8 @@ const CellSizeStatistics& Coupler::sizeStatistics(dem::ParticleSet& particles) {
 ParticleCorrection Coupler::particleCorrection(const FluidView& fluid, const dem::ParticleSet& particles) {
   ParticleCorrection c;
   c.law = drag_.get();
-  const double alpha = settings_.coarseGraining.factor;
+  const CoarseGraining& cg = settings_.coarseGraining;
+  const double alpha = cg.factor;
   if (drag_->polydisperse()) {
     updateSizeStatistics(particles, drag_->lubricationCutoff() > 0.0);
     if (sizeClasses_.count() == 1 && !singleSizeWarned_) {
@@ -706,7 +714,7 @@ ParticleCorrection Coupler::particleCorrection(const FluidView& fluid, const dem
       const std::size_t q = cellOfParticle_[p];
       const double sauter = sizeStats_.sauterDiameter(q);
       const Vec3 mixtureSlip = Vec3{u[0][q], u[1][q], u[2][q]} - sizeStats_.meanParticleVelocity(q);
-      sizeRatio_[p] = 2.0 * particles.radius[p] / alpha / sauter;
+      sizeRatio_[p] = 2.0 * particles.radius[p] / cg.factorOf(particles.type[p]) / sauter;
       mixtureReynolds_[p] = fluid.density * norm(mixtureSlip) * sauter / fluid.viscosity;
     }
     c.sizeRatio = sizeRatio_.data();
@@ -716,13 +724,20 @@ ParticleCorrection Coupler::particleCorrection(const FluidView& fluid, const dem
     const FilteredDragSettings& fd = settings_.filteredDrag;
     c.filterSize = std::cbrt(topology_.grid.cellVolume());
     c.parcelCorrection = drag::parcelDragCorrection(alpha, fd.parcelA, fd.parcelK);
+    if (!cg.uniform()) {  // c_corr(alpha) of each material's factor
+      parcelCorrectionByMaterial_.resize(cg.byMaterial.size());
+      for (std::size_t m = 0; m < cg.byMaterial.size(); ++m)
+        parcelCorrectionByMaterial_[m] = drag::parcelDragCorrection(cg.byMaterial[m], fd.parcelA, fd.parcelK);
+      c.parcelCorrectionByMaterial = parcelCorrectionByMaterial_.data();
+      c.material = particles.type.data();
+    }
     if (!(filterLength_ > 0.0) && particles.size() > 0) {
       // d_prim (given, or the Sauter mean primary diameter) and the particles' mean density
       double volume = 0.0, volumeOverDiameter = 0.0, mass = 0.0;
       for (std::size_t p = 0; p < particles.size(); ++p) {
         const double d = 2.0 * particles.radius[p];
         volume += force::sphereVolume(d);
-        volumeOverDiameter += force::sphereVolume(d) / (d / alpha);
+        volumeOverDiameter += force::sphereVolume(d) / (d / cg.factorOf(particles.type[p]));
         mass += particles.mass[p];
       }
       const double dPrim = fd.primaryDiameter > 0.0 ? fd.primaryDiameter : volume / volumeOverDiameter;
@@ -787,18 +802,22 @@ void Coupler::addFluidMediatedFriction(const FluidView& fluid, const CouplingFie
 }
 
 void Coupler::chooseSmoothingLength(const dem::ParticleSet& particles) {
-  const double alpha = settings_.coarseGraining.factor;
+  // several factors (per insertion): the law at the largest, whose parcels need the widest smoothing.
+  // d32 is the parcels' Sauter mean (seed 003 Tab. 4.15 gives l / d_p,32 of the parcels: l is
+  // constant per parcel diameter up to alpha 25, sec. 4.3.1; with it Tab. 4.16's alpha = 33 boxes
+  // get their 1.77 mm and 2.23 mm)
+  const double alpha = settings_.coarseGraining.largest();
   double volume = 0.0, volumeOverDiameter = 0.0;
   for (std::size_t p = 0; p < particles.size(); ++p) {
     const double d = 2.0 * particles.radius[p];
     volume += force::sphereVolume(d);
-    volumeOverDiameter += force::sphereVolume(d) / (d / alpha);
+    volumeOverDiameter += force::sphereVolume(d) / d;
   }
   const CartesianGrid& g = topology_.grid;
   const double meanFraction = volume / (g.cellVolume() * static_cast<double>(g.interiorCellCount()));
   const double sauter = volume / volumeOverDiameter;
   settings_.smoothingLength = autoSmoothingLength(alpha, sauter, meanFraction);
-  spdlog::info("coupling: smoothing_length auto = {:.6g} m ({:.4g} d32, d32 = {:.6g} m, alpha = {:g}, <phi_p> = {:.4g}; "
+  spdlog::info("coupling: smoothing_length auto = {:.6g} m ({:.4g} d32, parcel d32 = {:.6g} m, alpha = {:g}, <phi_p> = {:.4g}; "
                "seed 003 Tab. 4.15, eq. 4.10)",
                settings_.smoothingLength, settings_.smoothingLength / sauter, sauter, alpha, meanFraction);
 }
@@ -1068,7 +1087,7 @@ CouplingIntervalCheck Coupler::checkCouplingInterval(double demTimeStep, int dem
   // the fastest-relaxing particle: smallest rho_p d_prim^2
   double best = -1.0, d = 0.0, rhoP = 0.0;
   for (std::size_t p = 0; p < particles.size(); ++p) {
-    const double dp = 2.0 * particles.radius[p] / settings_.coarseGraining.factor;
+    const double dp = 2.0 * particles.radius[p] / settings_.coarseGraining.factorOf(particles.type[p]);
     const double rp = particles.mass[p] / force::sphereVolume(2.0 * particles.radius[p]);
     if (best < 0.0 || rp * dp * dp < best) {
       best = rp * dp * dp;

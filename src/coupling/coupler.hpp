@@ -207,6 +207,11 @@ class Coupler {
   double filteredDragLength() const { return filterLength_; }
 
   const CouplerSettings& settings() const { return settings_; }
+  /// Coarse-graining factors per material from the insertions (dem::System::coarseGrainingByMaterial;
+  /// 0: none given, coarse_grain_factor applies). Call before the first coupling step.
+  void setCoarseGrainingByMaterial(const std::vector<double>& factors) {
+    settings_.coarseGraining.setByMaterial(factors);
+  }
   const DragLaw& dragLaw() const { return *drag_; }
   const GridTopology& topology() const { return topology_; }
   const ParticleStencils& stencils() const {
@@ -336,6 +341,7 @@ class Coupler {
   std::vector<std::size_t> cellOfParticle_;
   std::vector<int> classOfParticle_;
   std::vector<double> sizeRatio_, mixtureReynolds_;
+  std::vector<double> parcelCorrectionByMaterial_;  // c_corr(alpha) per material (per-insertion factors)
   std::vector<int> frictionSlot_;     // per cell: its slot in frictionForce_, or -1
   std::vector<Vec3> frictionForce_;   // [slot * classes + i]: friction force density on class i, N/m^3
   double filterLength_ = 0.0;

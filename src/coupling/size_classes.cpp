@@ -34,7 +34,7 @@ int SizeClasses::classOf(double d) const {
 }
 
 void computeCellSizeStatistics(const GridTopology& topology, const dem::ParticleSet& particles,
-                               double coarseGrainingFactor, const SizeClasses& classes, CellSizeStatistics& out,
+                               const CoarseGraining& coarseGraining, const SizeClasses& classes, CellSizeStatistics& out,
                                std::vector<std::size_t>& cellOfParticle, std::vector<int>& classOfParticle,
                                bool classVelocities) {
   const CartesianGrid& g = topology.grid;
@@ -54,7 +54,7 @@ void computeCellSizeStatistics(const GridTopology& topology, const dem::Particle
   classOfParticle.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
     const double d = 2.0 * particles.radius[p];
-    const double primary = d / coarseGrainingFactor;
+    const double primary = d / coarseGraining.factorOf(particles.type[p]);
     const double volume = force::sphereVolume(d);
     const auto c = topology.cellOf(particles.position[p]);
     const std::size_t q = topology.flat(c[0], c[1], c[2]);

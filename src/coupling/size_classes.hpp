@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "coupling/coarse_graining.hpp"
 #include "coupling/grid_topology.hpp"
 #include "dem/particles.hpp"
 
@@ -79,7 +80,7 @@ struct CellSizeStatistics {
 /// flat index of particle p's cell, classOfParticle[p] its class; classVelocities: also
 /// classVolumeVelocity (else left empty).
 void computeCellSizeStatistics(const GridTopology& topology, const dem::ParticleSet& particles,
-                               double coarseGrainingFactor, const SizeClasses& classes, CellSizeStatistics& out,
+                               const CoarseGraining& coarseGraining, const SizeClasses& classes, CellSizeStatistics& out,
                                std::vector<std::size_t>& cellOfParticle, std::vector<int>& classOfParticle,
                                bool classVelocities = false);
 

@@ -23,8 +23,18 @@ System::System(Params& root, const Domain& domain, const Vec3& gravity, InitialP
       table_(root) {
   readWalls(root);
   InsertionCommon::table() = &table_;
-  for (Params& ins : root.list({"insertion", "-", "particle insertion (initial and rate-based)"}))
+  for (Params& ins : root.list({"insertion", "-", "particle insertion (initial and rate-based)"})) {
     inserters_.push_back(Registry<Inserter>::instance().create(ins, {"type", "-", "insertion method"}));
+    // a particle's coarse-graining factor is its material's (coarseGrainingByMaterial)
+    const Inserter& made = *inserters_.back();
+    for (std::size_t i = 0; i + 1 < inserters_.size() && !root.documenting(); ++i)
+      if (inserters_[i]->material() == made.material() && inserters_[i]->coarseGraining() != made.coarseGraining())
+        ins.fail("coarse_graining",
+                 fmt::format("{:g} for material {} of insertion {}, which another insertion makes with {:g}",
+                             made.coarseGraining(), table_.materials()[made.material()].name, inserters_.size() - 1,
+                             inserters_[i]->coarseGraining()),
+                 "the same coarse_graining for every insertion of one material (or a material per factor)");
+  }
   for (Params& o : root.list({"outlets", "-", "deletion regions (particles entering are removed)"}))
     outlets_.emplace_back(o);
   Params ns = root.section({"neighbour_search", "-", "Verlet lists on linked cells"});
@@ -524,6 +534,14 @@ double System::rayleighTime() const {
     tMin = std::min(tMin, dem::rayleighTime(0.5 * s.diameter, m.density, m.youngsModulus, m.poissonRatio));
   }
   return tMin;
+}
+
+std::vector<double> System::coarseGrainingByMaterial() const {
+  std::vector<double> factors(table_.materials().size(), 0.0);
+  for (const auto& ins : inserters_)
+    if (ins->material() >= 0 && ins->coarseGraining() > 0.0)
+      factors[static_cast<std::size_t>(ins->material())] = ins->coarseGraining();
+  return factors;
 }
 
 TimeStepStatus System::checkTimeStep(double dt) const { return dem::checkTimeStep(dt, rayleighTime()); }

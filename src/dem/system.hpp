@@ -99,6 +99,9 @@ class System {
   const ParticleSet& particles() const { return particles_; }
   const std::vector<Material>& materials() const { return table_.materials(); }
   const ContactTable& contactTable() const { return table_; }
+  /// The coarse-graining factor of each material's particles (insertion[].coarse_graining; the
+  /// insertions of one material share it), 0 where no insertion gives one.
+  std::vector<double> coarseGrainingByMaterial() const;
   /// Rayleigh time of the smallest/softest particle present or that an insertion can make (s);
   /// +inf without either.
   double rayleighTime() const;

@@ -191,7 +191,7 @@ TEST(SizeClasses, CellStatisticsGiveTheSauterMeanAndClassFractions) {
   CellSizeStatistics st;
   std::vector<std::size_t> cellOf;
   std::vector<int> classOf;
-  computeCellSizeStatistics(topology, s, 2.0, classes, st, cellOf, classOf);
+  computeCellSizeStatistics(topology, s, CoarseGraining{2.0}, classes, st, cellOf, classOf);
   const std::size_t q = topology.flat(0, 0, 0);
   EXPECT_EQ(cellOf[0], q);
   EXPECT_EQ(classOf[0], 0);
@@ -353,8 +353,9 @@ TEST(PolydisperseCoupling, FluidMediatedFrictionPullsTheClassesTogetherAndConser
 
 TEST(PolydisperseCoupling, AutoSmoothingLengthIsChosenFromTheParticlesAndPrinted) {
   // 3 parcels of 60 um and 120 um (coarse-graining factor 10: primaries 6 and 12 um) in a 3 mm cube:
-  // d32 = (2 * 6^3 + 12^3) / (2 * 6^2 + 12^2) um = 2160 / 216 um = 10 um;
-  // <phi_p> = (2 V(60 um) + V(120 um)) / 27 mm^3; l = 8.06 d32 (1e-3 / <phi_p>)^(1/3)
+  // parcel d32 = (2 * 60^3 + 120^3) / (2 * 60^2 + 120^2) um = 100 um (Tab. 4.15 is per parcel
+  // diameter, seed 003 sec. 4.3.1); <phi_p> = (2 V(60 um) + V(120 um)) / 27 mm^3;
+  // l = 8.06 d32 (1e-3 / <phi_p>)^(1/3)
   const CartesianGrid g = makeGrid({3, 3, 3}, {1e-3, 1e-3, 1e-3});
   auto coupler = makeCoupler("  smoothing_length: auto\n  coarse_grain_factor: 10\n", g);
   dem::ParticleSet s;
@@ -369,7 +370,7 @@ TEST(PolydisperseCoupling, AutoSmoothingLengthIsChosenFromTheParticlesAndPrinted
   coupler->computeVoidFraction(s, fields);
   spdlog::set_default_logger(previous);
   const double phi = (2 * std::pow(60e-6, 3) + std::pow(120e-6, 3)) * std::numbers::pi / 6 / 27e-9;
-  EXPECT_NEAR(coupler->settings().smoothingLength / (8.06 * 10e-6 * std::cbrt(1e-3 / phi)), 1.0, 1e-12);
+  EXPECT_NEAR(coupler->settings().smoothingLength / (8.06 * 100e-6 * std::cbrt(1e-3 / phi)), 1.0, 1e-12);
   EXPECT_NE(log.str().find("smoothing_length auto"), std::string::npos) << log.str();
 }
 
@@ -389,4 +390,13 @@ TEST(PolydisperseCoupling, OneParticleSizeWarnsThatThePolydisperseLawReducesToMo
   EXPECT_NE(log.str().find("reduces to its monodisperse form"), std::string::npos) << log.str();
   // y = 1 everywhere: the monodisperse form, beetstra x (1 + 0.064 eps) (beetstra_polydisperse.hpp)
   EXPECT_EQ(coupler->sizeClasses().count(), 1);
+}
+
+// Seed 003 Tab. 4.16: the alpha = 33 boxes of the riser's mean cells (parcel d32 = 33 x 6.80 um) got
+// l_smooth = 1.77 mm at <phi_p> = 2.22e-3 (3D) and 2.23 mm at 1.11e-3 (2D) from Tab. 4.15 (10.3 at
+// alpha 33) and eq. 4.10; the law reproduces both to the table's three digits.
+TEST(PolydisperseCoupling, AutoSmoothingLawGivesTheSeedsLargeDomainLengths) {
+  const double parcelSauter = 33.0 * 6.80e-6;
+  EXPECT_NEAR(autoSmoothingLength(33.0, parcelSauter, 2.22e-3), 1.77e-3, 0.005e-3);
+  EXPECT_NEAR(autoSmoothingLength(33.0, parcelSauter, 1.11e-3), 2.23e-3, 0.005e-3);
 }

@@ -56,6 +56,9 @@ class CsvInsertion final : public Inserter {
   void save(BinaryWriter& out) const override { out.put<std::uint8_t>(done_); }
   void load(BinaryReader& in) override { done_ = in.get<std::uint8_t>() != 0; }
 
+  double coarseGraining() const override { return common_.coarseGraining; }
+  int material() const override { return common_.material; }
+
  private:
   InsertionCommon common_;
   std::string file_;

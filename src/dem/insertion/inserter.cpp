@@ -14,6 +14,13 @@ InsertionCommon::InsertionCommon(Params& p) {
   density = p.documenting() ? 2500.0 : table()->materials()[material].density;
   size = readSizeDistribution(p);
   velocity = p.vec3({"velocity", "m/s", "initial velocity of inserted particles"}, {});
+  const Key cg{"coarse_graining", "-",
+               "coarse-graining factor alpha >= 1 (seed 003 eq. 3.34): each particle is a parcel standing for "
+               "alpha^3 primary particles of diameter d / alpha (size gives the parcel diameter d); the drag uses the "
+               "primary diameter, contacts the material as given (docs/coupling.md sec. 9); default: "
+               "coupling.coarse_grain_factor. Insertions of the same material share one factor",
+               Range::atLeast(1.0)};
+  if (p.documenting() || p.has("coarse_graining")) coarseGraining = p.real(cg, 1.0);
   rng.setState(static_cast<std::uint64_t>(p.integer({"seed", "-", "random seed", Range::atLeast(0)}, 1)));
 }
 

@@ -45,6 +45,10 @@ class Inserter {
   /// Inserts the particles due in (time, time + dt]; returns how many.
   virtual std::size_t insert(InsertionContext& ctx, double time, double dt) = 0;
   virtual SmallestInserted smallest() const = 0;
+  /// The coarse-graining factor of the particles it makes (key coarse_graining; 0: not given, the
+  /// coupling's coarse_grain_factor applies) and their material.
+  virtual double coarseGraining() const { return 0.0; }
+  virtual int material() const { return -1; }
   virtual void save(BinaryWriter& out) const = 0;
   virtual void load(BinaryReader& in) = 0;
 };
@@ -55,6 +59,9 @@ struct InsertionCommon {
   double density = 2500.0;
   std::unique_ptr<SizeDistribution> size;
   Vec3 velocity;
+  /// Coarse-graining factor alpha (seed 003 eq. 3.34): each particle is a parcel of alpha^3
+  /// primary particles of diameter d / alpha (coupling/coarse_graining.hpp); 0: not given.
+  double coarseGraining = 0.0;
   Random rng;
   /// Set by the System before constructing inserters (the registry passes only Params).
   static const ContactTable*& table();

@@ -40,6 +40,9 @@ class LatticeInsertion final : public Inserter {
   void save(BinaryWriter& out) const override { out.put<std::uint8_t>(done_); }
   void load(BinaryReader& in) override { done_ = in.get<std::uint8_t>() != 0; }
 
+  double coarseGraining() const override { return common_.coarseGraining; }
+  int material() const override { return common_.material; }
+
  private:
   InsertionCommon common_;
   Vec3 origin_;

@@ -6,6 +6,16 @@
 // holds up to 0.74 x (d_mean/d_max)^3 in the bulk, less near the region's faces: ~0.65 for
 // monodisperse spheres in a region 10 x 10 x 15 d. The fuller, the more crystalline, so let
 // gravity or shaking randomise it.
+//
+// initial_distribution (seed 003 sec. 4.2, Tab. 4.10-4.11: the "kick" that starts the clustering
+// of a sedimenting suspension): homogeneous (the default: the region as one), bisected (the
+// region cut in two halves normal to split_axis, the lower half holding three times the solid
+// concentration of the upper one) or quadrisectioned (cut in four quarters normal to split_axis and
+// second_split_axis, the two quarters on one diagonal holding three times the concentration of the
+// other two). The mean concentration is the region's either way. The diameters are drawn as
+// before and dealt, largest first, to the part whose solid volume lags its share most (3/4 and
+// 1/4; 3/8 twice and 1/8 twice), so the 3:1 ratio holds to one particle; each part is then
+// filled by random sequential addition (up to a part fraction of 0.25).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -33,6 +43,21 @@ class RandomPackingInsertion final : public Inserter {
     attempts_ = p.integer({"max_attempts", "-", "random_packing: placement attempts per particle",
                            Range::atLeast(1)},
                           1000);
+    const std::string layout =
+        p.choice({"initial_distribution", "-",
+                  "random_packing: homogeneous; bisected = two halves normal to split_axis, the lower with three times "
+                  "the solid concentration of the upper; quadrisectioned = four quarters normal to split_axis and "
+                  "second_split_axis, two diagonal ones with three times the concentration of the other two (seed 003 "
+                  "Tab. 4.10-4.11); the region's mean concentration either way"},
+                 {"homogeneous", "bisected", "quadrisectioned"}, "homogeneous");
+    parts_ = layout == "homogeneous" ? 1 : layout == "bisected" ? 2 : 4;
+    splitAxis_ = p.choice({"split_axis", "-", "random_packing: normal of the cut of bisected and quadrisectioned"},
+                          {"x", "y", "z"}, "x")[0] - 'x';
+    secondSplitAxis_ =
+        p.choice({"second_split_axis", "-", "random_packing: normal of the second cut of quadrisectioned"},
+                 {"x", "y", "z"}, "y")[0] - 'x';
+    if (!p.documenting() && parts_ == 4 && secondSplitAxis_ == splitAxis_)
+      p.fail("second_split_axis", "the same axis as split_axis", "another axis than split_axis");
     if (!p.documenting() && count_ == 0 && fraction_ == 0.0)
       p.fail("count", "neither count nor volume_fraction", "count > 0 or volume_fraction > 0");
     params_ = p;
@@ -53,6 +78,7 @@ class RandomPackingInsertion final : public Inserter {
       solid += std::numbers::pi / 6.0 * d * d * d;
     }
     std::stable_sort(diameters.begin(), diameters.end(), std::greater<>());
+    if (parts_ > 1) return insertInParts(ctx, grid, diameters, regionVolume);
     if (solid > kRandomSequentialLimit * regionVolume) return insertOnLattice(ctx, grid, diameters, dMax, solid);
     std::size_t added = 0;
     for (double d : diameters) {
@@ -74,6 +100,60 @@ class RandomPackingInsertion final : public Inserter {
     }
     return added;
   }
+  /// bisected / quadrisectioned (see the file comment).
+  std::size_t insertInParts(InsertionContext& ctx, OverlapGrid& grid, const std::vector<double>& diameters,
+                            double regionVolume) {
+    // part q: its box and its share of the solid volume (dense parts three times the sparse ones)
+    std::vector<Vec3> lo(static_cast<std::size_t>(parts_), min_), hi(static_cast<std::size_t>(parts_), max_);
+    std::vector<double> share(static_cast<std::size_t>(parts_));
+    const double midA = 0.5 * (min_[splitAxis_] + max_[splitAxis_]);
+    const double midB = 0.5 * (min_[secondSplitAxis_] + max_[secondSplitAxis_]);
+    for (int q = 0; q < parts_; ++q) {
+      const int a = q & 1, b = q >> 1;  // lower (0) or upper (1) side of each cut
+      (a ? lo : hi)[q][splitAxis_] = midA;
+      if (parts_ == 4) (b ? lo : hi)[q][secondSplitAxis_] = midB;
+      const bool dense = parts_ == 2 ? a == 0 : a == b;
+      share[q] = (dense ? 3.0 : 1.0) / (parts_ == 2 ? 4.0 : 8.0);
+    }
+    std::vector<double> solid(static_cast<std::size_t>(parts_), 0.0);
+    std::vector<std::vector<double>> dealt(static_cast<std::size_t>(parts_));
+    double total = 0.0;
+    for (double d : diameters) total += std::numbers::pi / 6.0 * d * d * d;
+    for (double d : diameters) {
+      int best = 0;  // the part furthest below its share
+      for (int q = 1; q < parts_; ++q)
+        if (solid[q] - share[q] * total < solid[best] - share[best] * total) best = q;
+      dealt[best].push_back(d);
+      solid[best] += std::numbers::pi / 6.0 * d * d * d;
+    }
+    std::size_t added = 0;
+    for (int q = 0; q < parts_; ++q) {
+      const double partVolume = regionVolume / parts_;
+      if (solid[q] > kRandomSequentialLimit * partVolume)
+        params_.fail("initial_distribution",
+                     fmt::format("a part with solid fraction {:.3f}", solid[q] / partVolume),
+                     "at most 0.25 in each part (random sequential addition): a lower volume_fraction or count");
+      for (double d : dealt[q]) {
+        const double r = 0.5 * d;
+        bool placed = false;
+        for (long long t = 0; t < attempts_ && !placed; ++t) {
+          Vec3 x;
+          for (int c = 0; c < 3; ++c) x[c] = common_.rng.uniform(lo[q][c] + r, hi[q][c] - r);
+          if (grid.overlaps(x, r)) continue;
+          grid.add(x, r);
+          ctx.particles.add(ctx.nextId++, common_.material, r, common_.density, x, common_.velocity);
+          placed = true;
+        }
+        if (!placed)
+          params_.fail(count_ > 0 ? "count" : "volume_fraction",
+                       fmt::format("only {} of {} particles placed", added, diameters.size()),
+                       "a larger region or fewer particles (random sequential addition)");
+        ++added;
+      }
+    }
+    return added;
+  }
+
   /// Jittered close-packed lattice (see the file comment).
   std::size_t insertOnLattice(InsertionContext& ctx, OverlapGrid& grid, const std::vector<double>& diameters,
                               double dMax, double solid) {
@@ -142,11 +222,15 @@ class RandomPackingInsertion final : public Inserter {
   void save(BinaryWriter& out) const override { out.put<std::uint8_t>(done_); }
   void load(BinaryReader& in) override { done_ = in.get<std::uint8_t>() != 0; }
 
+  double coarseGraining() const override { return common_.coarseGraining; }
+  int material() const override { return common_.material; }
+
  private:
   InsertionCommon common_;
   Vec3 min_, max_;
   long long count_ = 0, attempts_ = 1000;
   double fraction_ = 0.0;
+  int parts_ = 1, splitAxis_ = 0, secondSplitAxis_ = 1;  // initial_distribution
   bool done_ = false;
   Params params_ = Params::documentation();
 };

@@ -65,6 +65,9 @@ class RateInsertion final : public Inserter {
     common_.rng.setState(in.get<std::uint64_t>());
   }
 
+  double coarseGraining() const override { return common_.coarseGraining; }
+  int material() const override { return common_.material; }
+
  private:
   InsertionCommon common_;
   Vec3 corner_, edgeA_, edgeB_;
