@@ -16,6 +16,7 @@ declare -A forbidden=(
   [fluid]="dem coupling app"
   [coupling]="app"
   [parallel]="dem fluid coupling app"
+  [resolved]="coupling app"
 )
 
 violations=0

@@ -163,6 +163,15 @@ Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptio
     coupler_->setCoarseGrainingByMaterial(dem_->coarseGrainingByMaterial());  // insertion[].coarse_graining
     if (!root.documenting()) initialiseCoupling();
   }
+  if (root.documenting() || root.has("resolved")) {  // resolved CFD-DEM (src/resolved)
+    if (!fluid_) root.fail("resolved", "a 'resolved' section without a 'fluid' section", "a 'fluid' section as well");
+    if (coupler_ && !root.documenting())
+      root.fail("resolved", "both a 'coupling' and a 'resolved' section", "one of them (unresolved or resolved CFD-DEM)");
+    if (decomposition_.distributed())
+      root.section({"domain"}).fail("decomposition", fmt::format("{} ranks for a resolved case", decomposition_.ranks()),
+                                    "one rank (run without mpirun): resolved cases run on one rank for now");
+    resolved_ = std::make_unique<resolved::FictitiousDomain>(root, *fluid_, dem_->particles(), domain_, settings_.gravity);
+  }
 
   for (Params& m : root.list({"monitors", "-", "quantities written as CSV time series (one file per monitor)"})) {
     std::string type = "monitor";
@@ -293,6 +302,7 @@ void Simulation::writeCheckpoint(const std::string& path) const {
   dem_->save(out);
   if (fluid_) fluid_->save(out);
   if (coupler_) coupler_->save(out, dem_->particles());
+  if (resolved_) resolved_->save(out, dem_->particles());
   for (const MonitorSlot& m : monitors_) m.monitor->save(out);
   // (the state is gathered on rank 0, which writes the one file; the others wait for it)
   if (rootRank()) io::writeCheckpoint(path, fingerprint_, out);
@@ -321,6 +331,7 @@ void Simulation::restoreCheckpoint(const std::string& path) {
     fields.voidFractionOld = epsOld;
     checkCouplingInterval();
   }
+  if (resolved_) resolved_->load(in, dem_->particles());
   for (MonitorSlot& m : monitors_) m.monitor->load(in);
   if (!in.atEnd()) throw CheckpointError(fmt::format("checkpoint '{}' has trailing data (written by another case?)", path));
   if (rootRank()) {
@@ -349,7 +360,10 @@ void Simulation::advance() {
     ScopedPhase timer(appTimers_, Phase::Coupling);
     fieldsInTime_.keepStart(fluidView());
   }
-  if (fluid_) fluid_->step(fluidStep());
+  if (resolved_)  // the fluid step with the bodies' forcing; their loads onto the particles (src/resolved)
+    resolved_->fluidStep(*fluid_, dem_->particles(), fluidStep());
+  else if (fluid_)
+    fluid_->step(fluidStep());
   coupling::FluidView fluidNow;
   if (coupler_) {
     ScopedPhase timer(appTimers_, Phase::Coupling);
@@ -379,7 +393,7 @@ void Simulation::forcesOnParticles(const coupling::FluidView& fluid) {
 }
 
 RunState Simulation::state() const {
-  return RunState{time(), step_, dem_.get(), fluid_.get(), coupler_.get(), settings_.gravity, nullptr};
+  return RunState{time(), step_, dem_.get(), fluid_.get(), coupler_.get(), settings_.gravity, nullptr, resolved_.get()};
 }
 
 void Simulation::checkHealth() const {

@@ -17,6 +17,7 @@
 #include "io/csv_series.hpp"
 #include "io/vtk.hpp"
 #include "parallel/decomposition.hpp"
+#include "resolved/fictitious_domain.hpp"
 
 namespace gf::app {
 
@@ -123,6 +124,7 @@ class Simulation {
   std::unique_ptr<dem::System> dem_;
   std::unique_ptr<fluid::Solver> fluid_;        // absent for DEM-only cases
   std::unique_ptr<coupling::Coupler> coupler_;  // absent without a 'coupling' section
+  std::unique_ptr<resolved::FictitiousDomain> resolved_;  // resolved CFD-DEM: absent without a 'resolved' section
   Field fluidVelocity_[3], fluidPressureGradient_[3];  // cell-centred, lent to the coupling
   coupling::FluidFieldsInTime fieldsInTime_;           // substep_fluid_fields: interpolated
   std::vector<MonitorSlot> monitors_;

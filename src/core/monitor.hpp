@@ -22,6 +22,9 @@ class Solver;
 namespace coupling {
 class Coupler;
 }
+namespace resolved {
+class FictitiousDomain;
+}
 
 /// What a monitor may look at: read-only views of the solver parts that exist in this run.
 struct RunState {
@@ -35,6 +38,8 @@ struct RunState {
   /// the files; empty on the other ranks); null: the DEM's own (one rank). Read through
   /// monitoredParticles().
   const dem::ParticleSet* particles = nullptr;
+  /// The resolved bodies' forcing (resolved CFD-DEM runs only; src/resolved).
+  const resolved::FictitiousDomain* resolved = nullptr;
 };
 
 /// The particles a monitor that loops over particles reads (RunState::particles, else the DEM's).

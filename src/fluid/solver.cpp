@@ -404,6 +404,7 @@ void Solver::step(double dt) {
     // Each solve also moves u^n into uOld_ (u^{n-1} of the next step).
     for (int c = 0; c < 3; ++c) stats_.momentumIterations += solveHelmholtz(c, dt, g0);
   }
+  if (predictorHook_) predictorHook_(u_, dt, g0);  // direct forcing of resolved bodies (setPredictorHook)
   balanceOutflow(dt);
   {
     ScopedPhase pt(timers_, Phase::PressureSolve);

@@ -124,6 +124,15 @@ class Solver {
   /// the eps pair that step used (a coupler may have moved the coupling fields on since).
   double maxDivergence() const;
 
+  /// Direct-forcing hook (resolved CFD-DEM, src/resolved; seed 000 lines 471-510): called by step()
+  /// once, after the momentum predictor and before the pressure projection, with the predicted face
+  /// velocities of this rank's box (u-hat, which the hook may overwrite with u-tilde), the step and
+  /// the BDF coefficient gamma0 of the time derivative (a change du of a face velocity is the body
+  /// force rho gamma0 du / dt). The projection then makes the forced field divergence-free. With
+  /// fluid.pressure.correctors > 1 the later correctors do not call it again. Empty: no forcing.
+  using PredictorHook = std::function<void(Field (&u)[3], double dt, double gamma0)>;
+  void setPredictorHook(PredictorHook hook) { predictorHook_ = std::move(hook); }
+
   // Initial conditions (also used by tests): set u^n (= u^{n-1}), p, scalar from functions of position.
   void setVelocity(const std::function<Vec3(const Vec3&)>& f);
   void setPressure(const std::function<double(const Vec3&)>& f);
@@ -273,6 +282,7 @@ class Solver {
   mutable long long healthCheckedAt_ = -1;  // steps_ at the last complete health scan
   StepStatistics stats_;
   PhaseTimers timers_;
+  PredictorHook predictorHook_;  // setPredictorHook
 };
 
 }  // namespace gf::fluid

@@ -1,0 +1,330 @@
+#include "resolved/fictitious_domain.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <array>
+#include <unordered_map>
+
+#include "parallel/exchange.hpp"
+
+namespace gf::resolved {
+
+namespace {
+/// Below this many cells per diameter a resolved body is refused; below kWarnCells a warning says the
+/// result depends on the grid (seed 000 lines 519-527: 8 cells per diameter for grid-independent
+/// settling).
+constexpr double kMinCells = 4.0;
+constexpr double kWarnCells = 8.0;
+/// resolved.radius_offset's default, cells (docs/resolved.md: calibration on the Schaefer-Turek
+/// cylinder, checked on the cylinder at Re 100 and the settling sphere).
+constexpr double kDefaultRadiusOffset = 0.0;
+}  // namespace
+
+FictitiousDomain::FictitiousDomain(Params& root, fluid::Solver& fluid, dem::ParticleSet& particles,
+                                   const Domain& domain, const Vec3& gravity)
+    : gravity_(gravity) {
+  Params section = root.section(
+      {"resolved", "-",
+       "resolved CFD-DEM (fictitious domain, docs/resolved.md): every particle is a resolved sphere moved by the "
+       "fluid's forcing; needs a 'fluid' section and excludes 'coupling'"});
+  implicit_ = section.choice({"forcing", "-",
+                               "implicit: the bodies' velocity is imposed through a penalty term inside the momentum "
+                               "predictor and the projection (robust at any viscous time step); explicit: imposed on "
+                               "the predicted velocity before the projection, as seed 000 lines 471-510 "
+                               "(docs/resolved.md: accurate only while nu dt / h^2 << 1)"},
+                              {"implicit", "explicit"}, "implicit") == "implicit";
+  radiusOffsetCells_ = section.real(
+      {"radius_offset", "cells",
+       "the forcing covers the bodies with radii larger by this many cell sizes (the explicit forcing's no-slip "
+       "condition is not exact near the surface: the body acts smaller than it is; docs/resolved.md)",
+       Range::between(-1.0, 1.0)},
+      kDefaultRadiusOffset);
+  std::vector<Params> entries = section.list(
+      {"bodies", "-", "fixed bodies the fluid flows around (spheres; cylinders along z), optionally rotating"});
+  for (Params& b : entries) {
+    const std::string shape =
+        b.choice({"shape", "-", "sphere, or cylinder (axis parallel to z, spanning the domain: a 2D body)"},
+                 {"sphere", "cylinder"});
+    const Vec3 centre = b.vec3({"centre", "m", "centre (cylinder: a point of its axis)"});
+    const double radius = b.real({"radius", "m", "radius", Range::positive()});
+    const Vec3 omega = b.vec3(
+        {"angular_velocity", "rad/s", "prescribed angular velocity about the centre (a cylinder: z component only)"},
+        Vec3{});
+    if (b.documenting()) continue;
+    FixedBody f;
+    f.body.shape = shape == "sphere" ? Shape::Sphere : Shape::Cylinder;
+    f.body.centre = centre;
+    f.body.radius = radius;
+    f.body.angularVelocity = f.body.shape == Shape::Cylinder ? Vec3{0.0, 0.0, omega.z} : omega;
+    if (f.body.shape == Shape::Sphere && fluid.twoD())
+      b.fail("shape", "a sphere on a 2D grid (fluid.cells with nz = 1)", "a cylinder, or a 3D grid");
+    const double n = cellsPerDiameter(radius, fluid.grid().spacing, f.body.shape == Shape::Cylinder);
+    const double h = f.body.shape == Shape::Cylinder ? std::max(fluid.grid().spacing.x, fluid.grid().spacing.y)
+                                                     : std::max({fluid.grid().spacing.x, fluid.grid().spacing.y,
+                                                                 fluid.grid().spacing.z});
+    if (n < kMinCells)
+      b.fail("radius", fmt::format("{} m: diameter {} m on cells of {} m is {:.3g} cells per diameter", radius,
+                                   2.0 * radius, h, n),
+             fmt::format("at least {} cells per diameter (diameter >= {} m), better {}", kMinCells, kMinCells * h,
+                         kWarnCells));
+    if (n < kWarnCells)
+      spdlog::warn("{}: diameter {} m on cells of {} m is {:.3g} cells per diameter, below {}: forces depend on the grid",
+                   b.path("radius"), 2.0 * radius, h, n, kWarnCells);
+    fixed_.push_back(f);
+  }
+  if (root.documenting()) return;
+
+  const CartesianGrid& g = fluid.grid();
+  box_.grid = g;
+  box_.offset = fluid.cellOffset();
+  box_.global = fluid.globalGrid().cells;
+  box_.periodic = domain.periodic;
+  box_.twoD = fluid.twoD();
+  rho_ = fluid.density();
+  radiusOffset_ = radiusOffsetCells_ * (fluid.twoD() ? std::max(g.spacing.x, g.spacing.y)
+                                                     : std::max({g.spacing.x, g.spacing.y, g.spacing.z}));
+  depth_ = domain.size().z;
+  distributed_ = fluid.decomposition().distributed();
+
+  // The particles at start: resolved enough, and clear of the fixed bodies.
+  if (particles.size() > 0) {
+    if (fluid.twoD())
+      section.fail("bodies", fmt::format("{} particle(s) on a 2D grid (fluid.cells with nz = 1)", particles.size()),
+                   "a 3D grid for resolved spheres");
+    std::size_t smallest = 0;
+    for (std::size_t i = 1; i < particles.size(); ++i)
+      if (particles.radius[i] < particles.radius[smallest]) smallest = i;
+    const double r = particles.radius[smallest];
+    const Vec3 h = g.spacing;
+    const double hmax = std::max({h.x, h.y, h.z}), n = cellsPerDiameter(r, h, false);
+    if (n < kMinCells) {
+      Params fluidSection = root.section({"fluid"});
+      fluidSection.fail(
+          "cells",
+          fmt::format("cells of {} m for particle {} of diameter {} m: {:.3g} cells per diameter",
+                      hmax, particles.id[smallest], 2.0 * r, n),
+          fmt::format("at least {} cells per diameter for resolved particles (cell size <= {} m), better {}", kMinCells,
+                      2.0 * r / kMinCells, kWarnCells));
+    }
+    if (n < kWarnCells)
+      spdlog::warn("resolved: particle {} of diameter {} m on cells of {} m is {:.3g} cells per diameter, below {}: "
+                   "forces depend on the grid",
+                   particles.id[smallest], 2.0 * r, hmax, n, kWarnCells);
+    for (std::size_t b = 0; b < fixed_.size(); ++b) {
+      const Body& body = fixed_[b].body;
+      std::vector<std::int64_t> ids;
+      for (std::size_t i = 0; i < particles.size(); ++i) {
+        Vec3 d = particles.position[i] - body.centre;
+        if (body.shape == Shape::Cylinder) d.z = 0.0;
+        if (norm(d) < particles.radius[i] + body.radius) ids.push_back(particles.id[i]);
+      }
+      if (!ids.empty())
+        entries[b].fail("centre",
+                        fmt::format("particle(s) {} overlapping body {} at start", fmt::join(ids, ", "), b),
+                        "particles clear of the fixed bodies at start");
+    }
+  }
+  momentumColumn_ = particles.addColumn("resolved_fluid_momentum", Vec3{});
+  angularColumn_ = particles.addColumn("resolved_fluid_angular_momentum", Vec3{});
+  knownColumn_ = particles.addColumn("resolved_fluid_momentum_known", 0.0);
+  particles.enableExternalForces();
+  if (!implicit_) fluid.setPredictorHook([this](Field(&u)[3], double dt, double gamma0) { impose(u, dt, gamma0); });
+}
+
+Body FictitiousDomain::particleBody(const dem::ParticleSet& p, std::size_t i) const {
+  Body b;
+  b.shape = Shape::Sphere;
+  b.centre = p.position[i];
+  b.radius = p.radius[i];
+  b.velocity = p.velocity[i];
+  b.angularVelocity = p.angularVelocity[i];
+  return b;
+}
+
+void FictitiousDomain::impose(Field (&u)[3], double dt, double gamma0) {
+  // Bodies one after the other (a face two bodies cover takes the later one's velocity in the
+  // proportion it covers). Fixed bodies first, then particles in the set's order: deterministic.
+  std::size_t k = 0;
+  for (const FixedBody& f : fixed_) forcingSums_[k++] = imposeRigidMotion(forcingBody(f.body), box_, u, rho_, gamma0, dt);
+  for (const Body& b : particleBodies_) forcingSums_[k++] = imposeRigidMotion(forcingBody(b), box_, u, rho_, gamma0, dt);
+}
+
+void FictitiousDomain::fluidStep(fluid::Solver& fluid, dem::ParticleSet& particles, double dt) {
+  const std::size_t nf = fixed_.size();
+  // The particles this rank owns, as bodies at the start of the step (positions and velocities at
+  // time n: the fluid sees the bodies where the DEM left them).
+  std::vector<std::size_t> owned;
+  particleBodies_.clear();
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (particles.isGhost(i)) continue;
+    owned.push_back(i);
+    particleBodies_.push_back(particleBody(particles, i));
+  }
+  const std::size_t n = nf + owned.size();
+  forcingSums_.assign(n, FaceSums{});
+
+  // Implicit forcing: the penalty K and the K-weighted body velocity of the cells the bodies cover
+  // (the fluid solver's implicit drag term), for the BDF2 step of a constant dt (gamma0 = 3/2; 1 on
+  // the first step).
+  const double gamma0 = fluid.stepsDone() > 0 ? 1.5 : 1.0;
+  const double diagonal = predictorDiagonal(rho_, fluid.viscosity(), gamma0, dt, box_.grid.spacing, box_.twoD);
+  if (implicit_) setPenalty(fluid, diagonal);
+
+  fluid.step(dt);  // predictor, projection (explicit forcing: impose, through the hook, between them)
+
+  const std::array<const Field*, 3> u{&fluid.velocity(0), &fluid.velocity(1), &fluid.velocity(2)};
+  if (implicit_) {
+    for (std::size_t b = 0; b < nf; ++b)
+      forcingSums_[b] = implicitForcingLoad(forcingBody(fixed_[b].body), box_, u, diagonal);
+    for (std::size_t q = 0; q < owned.size(); ++q)
+      forcingSums_[nf + q] = implicitForcingLoad(forcingBody(particleBodies_[q]), box_, u, diagonal);
+  }
+
+  // Fluid momentum inside each body after the projection: the rigid-body correction rho dI/dt
+  // (Kempe & Froehlich 2012 eq. 8), I from this step and the last.
+  std::vector<FaceSums> inside(n);
+  for (std::size_t b = 0; b < nf; ++b) inside[b] = fluidMomentumInside(forcingBody(fixed_[b].body), box_, u);
+  for (std::size_t q = 0; q < owned.size(); ++q) inside[nf + q] = fluidMomentumInside(forcingBody(particleBodies_[q]), box_, u);
+
+  if (distributed_) {
+    // Sums over the ranks' faces (a particle's faces may lie on several ranks). The particle sums
+    // are per rank-owned particle here: on several ranks each particle's faces on other ranks are
+    // missing (the app refuses resolved cases on several ranks until the particles' sums are keyed
+    // by id across ranks).
+    std::vector<double> flat;
+    flat.reserve(12 * nf);
+    for (std::size_t b = 0; b < nf; ++b)
+      for (const Vec3* v : {&forcingSums_[b].force, &forcingSums_[b].torque, &inside[b].momentum, &inside[b].angularMomentum})
+        for (int a = 0; a < 3; ++a) flat.push_back((*v)[a]);
+    flat = parallel::sumOverRanks(flat);
+    std::size_t k = 0;
+    for (std::size_t b = 0; b < nf; ++b)
+      for (Vec3* v : {&forcingSums_[b].force, &forcingSums_[b].torque, &inside[b].momentum, &inside[b].angularMomentum})
+        for (int a = 0; a < 3; ++a) (*v)[a] = flat[k++];
+  }
+
+  // Load = forcing + rigid-body correction - rho V g (buoyancy: the fluid carries gravity, so the
+  // forcing inside a body at rest in a fluid at rest is zero and the hydrostatic pressure's share
+  // of the stress integral, seed eq. 2.22, is added here).
+  auto loadOf = [&](const Body& body, const FaceSums& forcing, const FaceSums& now, const Vec3& before,
+                    const Vec3& angularBefore, bool known) {
+    BodyLoad l;
+    l.force = forcing.force - rho_ * bodyVolume(body, depth_) * gravity_;
+    l.torque = forcing.torque;
+    if (known) {
+      l.force += rho_ * (now.momentum - before) / dt;
+      l.torque += rho_ * (now.angularMomentum - angularBefore) / dt;
+    }
+    return l;
+  };
+  for (std::size_t b = 0; b < nf; ++b) {
+    FixedBody& f = fixed_[b];
+    f.load = loadOf(f.body, forcingSums_[b], inside[b], f.fluidMomentum, f.fluidAngularMomentum, fixedKnown_);
+    f.fluidMomentum = inside[b].momentum;
+    f.fluidAngularMomentum = inside[b].angularMomentum;
+  }
+  fixedKnown_ = true;
+  particles.enableExternalForces();
+  auto& momentum = particles.vec3Columns[momentumColumn_].values;
+  auto& angular = particles.vec3Columns[angularColumn_].values;
+  auto& known = particles.doubleColumns[knownColumn_].values;
+  for (std::size_t q = 0; q < owned.size(); ++q) {
+    const std::size_t i = owned[q];
+    const BodyLoad l = loadOf(particleBodies_[q], forcingSums_[nf + q], inside[nf + q], momentum[i], angular[i],
+                              known[i] != 0.0);
+    particles.externalForce[i] = l.force;
+    particles.externalTorque[i] = l.torque;
+    momentum[i] = inside[nf + q].momentum;
+    angular[i] = inside[nf + q].angularMomentum;
+    known[i] = 1.0;
+  }
+  if (!owned.empty()) particles.hasExternalTorques = true;
+}
+
+void FictitiousDomain::setPenalty(fluid::Solver& fluid, double diagonal) {
+  CouplingFields& fields = fluid.couplingFields();
+  Field& K = fields.dragCoefficient;
+  for (std::size_t q : penaltyCells_) {  // the last step's cells back to K = 0
+    K.data()[q] = 0.0;
+    for (int c = 0; c < 3; ++c) fields.particleVelocity[c].data()[q] = 0.0;
+  }
+  penaltyCells_.clear();
+  auto add = [&](const Body& body) {
+    forEachCoveredCell(forcingBody(body), box_, [&](int i, int j, int k, const Vec3& x, double phi) {
+      const std::size_t q = K.index(i, j, k);
+      if (K.data()[q] == 0.0) penaltyCells_.push_back(q);
+      const double k1 = penaltyCoefficient(phi, diagonal);
+      const Vec3 ub = rigidVelocity(body, x);
+      K.data()[q] += k1;
+      for (int c = 0; c < 3; ++c) fields.particleVelocity[c].data()[q] += k1 * ub[c];  // (sum K u_b, divided below)
+    });
+  };
+  for (const FixedBody& f : fixed_) add(f.body);
+  for (const Body& b : particleBodies_) add(b);
+  for (std::size_t q : penaltyCells_)
+    for (int c = 0; c < 3; ++c) fields.particleVelocity[c].data()[q] /= K.data()[q];
+}
+
+BodyLoad FictitiousDomain::particleLoad(const dem::ParticleSet& particles, std::int64_t id) const {
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    if (particles.id[i] == id && !particles.isGhost(i) && particles.hasExternalForces)
+      return {particles.externalForce[i], particles.externalTorque[i]};
+  return {};
+}
+
+void FictitiousDomain::save(BinaryWriter& out, const dem::ParticleSet& particles) const {
+  out.put<std::uint8_t>(fixedKnown_ ? 1 : 0);
+  out.put<std::uint64_t>(fixed_.size());
+  for (const FixedBody& f : fixed_) {
+    out.put(f.fluidMomentum);
+    out.put(f.fluidAngularMomentum);
+    out.put(f.load.force);
+    out.put(f.load.torque);
+  }
+  std::vector<std::int64_t> ids;
+  std::vector<Vec3> m, a;
+  std::vector<double> k;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (particles.isGhost(i)) continue;
+    ids.push_back(particles.id[i]);
+    m.push_back(particles.vec3Columns[momentumColumn_].values[i]);
+    a.push_back(particles.vec3Columns[angularColumn_].values[i]);
+    k.push_back(particles.doubleColumns[knownColumn_].values[i]);
+  }
+  out.putVector(ids);
+  out.putVector(m);
+  out.putVector(a);
+  out.putVector(k);
+}
+
+void FictitiousDomain::load(BinaryReader& in, dem::ParticleSet& particles) {
+  fixedKnown_ = in.get<std::uint8_t>() != 0;
+  const auto n = in.get<std::uint64_t>();
+  if (n != fixed_.size()) throw Error("checkpoint: resolved bodies differ from the case");
+  for (FixedBody& f : fixed_) {
+    f.fluidMomentum = in.get<Vec3>();
+    f.fluidAngularMomentum = in.get<Vec3>();
+    f.load.force = in.get<Vec3>();
+    f.load.torque = in.get<Vec3>();
+  }
+  const auto ids = in.getVector<std::int64_t>();
+  const auto m = in.getVector<Vec3>();
+  const auto a = in.getVector<Vec3>();
+  const auto k = in.getVector<double>();
+  momentumColumn_ = particles.addColumn("resolved_fluid_momentum", Vec3{});
+  angularColumn_ = particles.addColumn("resolved_fluid_angular_momentum", Vec3{});
+  knownColumn_ = particles.addColumn("resolved_fluid_momentum_known", 0.0);
+  std::unordered_map<std::int64_t, std::size_t> where;
+  for (std::size_t q = 0; q < ids.size(); ++q) where[ids[q]] = q;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const auto it = where.find(particles.id[i]);
+    if (it == where.end()) continue;
+    particles.vec3Columns[momentumColumn_].values[i] = m[it->second];
+    particles.vec3Columns[angularColumn_].values[i] = a[it->second];
+    particles.doubleColumns[knownColumn_].values[i] = k[it->second];
+  }
+}
+
+}  // namespace gf::resolved

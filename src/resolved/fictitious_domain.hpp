@@ -1,0 +1,111 @@
+#pragma once
+// Resolved CFD-DEM by the fictitious-domain method of cfdemSolverIB (seed 000 lines 301-631): bodies
+// larger than the fluid cells, the fluid solved on the whole domain and the bodies' rigid motion
+// imposed on it as a body force (docs/resolved.md).
+//
+// One fluid (coupling) step, FictitiousDomain::fluidStep (seed lines 471-510):
+//   1. momentum predictor on the whole domain (fluid::Solver, u-hat);
+//   2. in the faces each body covers, u-tilde = u-hat + phi (U + omega x r - u-hat) (forcing.hpp), the
+//      force of that forcing summed per body (fluid::Solver::setPredictorHook);
+//   3. pressure projection (fluid::Solver);
+//   4. hydrodynamic force and torque of each body: the forcing's, the rigid-body correction for the
+//      fluid inside it, and the buoyancy the hydrostatic pressure would give (the fluid carries
+//      gravity) (seed eqs. 2.15-2.25, lines 411-464);
+//   5. the DEM particles' external force and torque set to theirs: the DEM sub-steps then integrate
+//      their motion and collisions (time.coupling_interval DEM steps per fluid step).
+// Bodies: every DEM particle is a free resolved sphere; `resolved.bodies` adds fixed spheres and 2D
+// cylinders (axis z), optionally rotating at a prescribed angular velocity.
+//
+// Under MPI each rank forces the faces of its own box and the sums are added over the ranks
+// (parallel::sumOverRanks); the app refuses resolved cases on several ranks for now (docs/resolved.md).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/domain.hpp"
+#include "core/params.hpp"
+#include "core/serialize.hpp"
+#include "dem/particles.hpp"
+#include "fluid/solver.hpp"
+#include "resolved/forcing.hpp"
+
+namespace gf::resolved {
+
+/// Hydrodynamic load on one body over the last fluid step.
+struct BodyLoad {
+  Vec3 force;   // N, total hydrodynamic force (forcing + rigid-body correction + buoyancy)
+  Vec3 torque;  // N m, about the body's centre
+};
+
+/// A body of `resolved.bodies`: fixed in place, optionally rotating.
+struct FixedBody {
+  Body body;
+  Vec3 fluidMomentum, fluidAngularMomentum;  // the last step's sum phi u V (rigid-body correction)
+  BodyLoad load;
+};
+
+class FictitiousDomain {
+ public:
+  /// Reads section `resolved`, checks the resolution (warning below resolved.warn_cells_per_diameter,
+  /// error below resolved.min_cells_per_diameter) and that no particle overlaps a fixed body,
+  /// installs the forcing hook on the fluid solver. Throws CaseError. In documentation mode it
+  /// only declares the keys.
+  FictitiousDomain(Params& root, fluid::Solver& fluid, dem::ParticleSet& particles, const Domain& domain,
+                   const Vec3& gravity);
+
+  /// One fluid step with the forcing, then every body's load; the particles' external force and
+  /// torque become theirs (held over the DEM sub-steps).
+  void fluidStep(fluid::Solver& fluid, dem::ParticleSet& particles, double dt);
+
+  const std::vector<FixedBody>& fixedBodies() const { return fixed_; }
+  /// Load of the particle with this id over the last step (zero if there is none on this rank).
+  BodyLoad particleLoad(const dem::ParticleSet& particles, std::int64_t id) const;
+  double fluidDensity() const { return rho_; }
+  /// Extent of the domain along z (the length of a 2D cylinder), m.
+  double depth() const { return depth_; }
+
+  void save(BinaryWriter& out, const dem::ParticleSet& particles) const;
+  void load(BinaryReader& in, dem::ParticleSet& particles);
+
+ private:
+  void impose(Field (&u)[3], double dt, double gamma0);
+  /// Implicit forcing: K and the K-weighted body velocity of the covered cells (fluid coupling fields).
+  void setPenalty(fluid::Solver& fluid, double diagonal);
+  /// The momentum sums of every body for the current velocity (after the projection).
+  void sumFluidMomentum(const fluid::Solver& fluid);
+  Body particleBody(const dem::ParticleSet& p, std::size_t i) const;
+  /// The body the forcing covers: its radius larger by resolved.radius_offset cells.
+  Body forcingBody(Body b) const {
+    b.radius += radiusOffset_;
+    return b;
+  }
+
+  FaceBox box_;
+  double rho_ = 1.0;
+  double radiusOffsetCells_ = 0.0, radiusOffset_ = 0.0;  // resolved.radius_offset in cells, in m
+  double depth_ = 1.0;
+  Vec3 gravity_;
+  bool distributed_ = false;
+  bool implicit_ = true;                  // resolved.forcing
+  std::vector<std::size_t> penaltyCells_;  // cells with K > 0 (implicit forcing)
+  std::vector<FixedBody> fixed_;
+  // Per step (set by fluidStep before the fluid step, read by the hook).
+  std::vector<Body> particleBodies_;
+  std::vector<FaceSums> forcingSums_;  // fixed bodies, then particles
+  const dem::ParticleSet* stepParticles_ = nullptr;
+  // Particle columns (dem::ParticleSet::addColumn): the fluid momentum inside each particle at the
+  // end of the last step and whether it is set (a new particle has no previous value).
+  std::size_t momentumColumn_ = dem::ParticleSet::kNoColumn;
+  std::size_t angularColumn_ = dem::ParticleSet::kNoColumn;
+  std::size_t knownColumn_ = dem::ParticleSet::kNoColumn;
+  bool fixedKnown_ = false;
+};
+
+/// Smallest number of cells across a diameter of a body of radius r on a grid of spacing h
+/// (a cylinder along z: x and y only).
+inline double cellsPerDiameter(double radius, const Vec3& h, bool cylinder) {
+  const double hmax = cylinder ? std::max(h.x, h.y) : std::max({h.x, h.y, h.z});
+  return 2.0 * radius / hmax;
+}
+
+}  // namespace gf::resolved

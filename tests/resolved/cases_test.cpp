@@ -1,0 +1,122 @@
+// The resolved CFD-DEM cases (cases/resolved_*.yaml) run shortened through `grainflow run`, and
+// bad resolved input is refused with the file, line, key and numbers a user needs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "../app/run_helper.hpp"
+
+namespace gf::resolved {
+namespace {
+
+using gf::testing::grainflow;
+using gf::testing::readAll;
+using gf::testing::TempDir;
+
+std::string source(const std::string& relative) { return std::string(GRAINFLOW_SOURCE_DIR) + "/" + relative; }
+
+/// The last row of a monitor CSV, as numbers.
+std::vector<double> lastRow(const std::string& csv) {
+  std::istringstream in(readAll(csv));
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '#') last = line;
+  std::vector<double> values;
+  std::istringstream row(last);
+  std::string cell;
+  while (std::getline(row, cell, ',')) values.push_back(std::stod(cell));
+  return values;
+}
+
+TEST(ResolvedCases, EveryResolvedCaseRunsShortened) {
+  // Shortened to a few fluid steps each (end time per case), one thread.
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"resolved_cylinder_re100.yaml", "0.02"}, {"resolved_settling_sphere.yaml", "0.004"}};
+  int found = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(source("cases")))
+    found += entry.path().filename().string().rfind("resolved_", 0) == 0;
+  EXPECT_EQ(found, static_cast<int>(cases.size())) << "a resolved case without a shortened run here";
+  for (const auto& [name, end] : cases) {
+    SCOPED_TRACE(name);
+    TempDir dir;
+    const auto r = grainflow("run " + source("cases/" + name) + " --quiet --threads 1 --end-time " + end + " --output " +
+                             dir.file("o"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const auto& entry : std::filesystem::directory_iterator(dir.path() / "o")) {
+      if (entry.path().extension() != ".csv") continue;
+      const std::vector<double> row = lastRow(entry.path().string());
+      ASSERT_FALSE(row.empty()) << entry.path();
+      for (double v : row) EXPECT_TRUE(std::isfinite(v)) << entry.path();
+    }
+  }
+}
+
+TEST(ResolvedCases, SettlingSphereStartsDownwardSlowerThanWithoutFluidResistance) {
+  // d = 2 mm, 1500 in 1000 kg/m^3: from rest the sphere accelerates at most at (rho_p - rho_f) g /
+  // (rho_p + rho_f / 2) = 2.45 m/s^2 (added mass 1/2); the history (Basset) force is of the same
+  // size as the inertia after 10 ms (12 a^2 rho_f sqrt(pi nu t) against (rho_p + rho_f / 2) 4/3 pi a^3)
+  // and the drag grows: after 10 ms the velocity is downward, below the 0.0245 m/s without them and
+  // above a fifth of it.
+  TempDir dir;
+  const auto r = grainflow("run " + source("cases/resolved_settling_sphere.yaml") +
+                           " --quiet --threads 1 --end-time 0.01 --output " + dir.file("o"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const std::vector<double> row = lastRow(dir.file("o/particle.csv"));  // time, x, y, z, vx, vy, vz, ...
+  ASSERT_GE(row.size(), 7u);
+  EXPECT_NEAR(row[0], 0.01, 1e-9);
+  EXPECT_LT(row[6], -0.2 * 0.0245);
+  EXPECT_GT(row[6], -0.0245);
+  EXPECT_NEAR(row[4], 0.0, 1e-9);  // (symmetric: no sideways drift)
+}
+
+std::string settlingCaseWith(const std::string& from, const std::string& to) {
+  std::string text = readAll(source("cases/resolved_settling_sphere.yaml"));
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+TEST(ResolvedBadInput, TooFewCellsPerDiameterIsRefusedWithTheNumbers) {
+  TempDir dir;
+  // 2 mm spheres on 1 mm cells: 2 cells per diameter.
+  const std::string file = dir.write("coarse.yaml", settlingCaseWith("cells: [64, 64, 128]", "cells: [16, 16, 32]"));
+  const auto r = grainflow("check " + file);
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("coarse.yaml:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("fluid.cells"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("diameter 0.002 m"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("cells of 0.001 m"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("at least 4 cells per diameter"), std::string::npos) << r.output;
+  // 4 cells per diameter: accepted with a warning naming the 8 recommended.
+  const std::string warned = dir.write("warned.yaml", settlingCaseWith("cells: [64, 64, 128]", "cells: [32, 32, 64]"));
+  const auto w = grainflow("check " + warned);
+  EXPECT_EQ(w.exitCode, 0) << w.output;
+  EXPECT_NE(w.output.find("below 8"), std::string::npos) << w.output;
+}
+
+TEST(ResolvedBadInput, ParticleOverlappingAFixedBodyIsRefusedWithItsId) {
+  TempDir dir;
+  const std::string file = dir.write(
+      "overlap.yaml",
+      settlingCaseWith("resolved: {}",
+                       "resolved:\n  bodies:\n    - {shape: sphere, centre: [0.008, 0.008, 0.0225], radius: 0.001}"));
+  const auto r = grainflow("check " + file);
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("resolved.bodies[0].centre"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("particle(s) 0 overlapping body 0"), std::string::npos) << r.output;
+}
+
+TEST(ResolvedBadInput, ResolvedAndUnresolvedCouplingTogetherAreRefused) {
+  TempDir dir;
+  const std::string file =
+      dir.write("both.yaml", settlingCaseWith("resolved: {}", "resolved: {}\ncoupling: {drag_law: di_felice}"));
+  const auto r = grainflow("check " + file);
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("both a 'coupling' and a 'resolved' section"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace gf::resolved
