@@ -72,5 +72,9 @@ TEST(PeriodicBoxCases, PolydisperseBoxesRunShortened) {
     const double alpha = name == "cfddem_periodic_box_poly" ? 1.0 : 10.0;
     EXPECT_EQ(last.at(column(box, "primary_particles")), alpha * alpha * alpha * parcels);
     EXPECT_NEAR(last.at(column(box, "solid_fraction")), 1e-3, 1e-5);
+    if (alpha > 1.0) {
+      const auto count = gf::io::readCsv(dir.file("o/particle_count.csv"));
+      EXPECT_EQ(count.rows.back().at(column(count, "primary_particles")), 1000.0 * parcels);
+    }
   }
 }
