@@ -154,7 +154,10 @@ Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptio
         "decomposition", fmt::format("{} ranks for a coupled case", decomposition_.ranks()),
         "one rank (run without mpirun): DEM-only and fluid-only cases run on several ranks, coupled ones not yet");
   if (root.documenting() || root.has("fluid"))
-    fluid_ = std::make_unique<fluid::Solver>(root, domain_, settings_.gravity, decomposition_);
+    // (resolved CFD-DEM: the fluid solves for the pressure less the hydrostatic part; the bodies get
+    // the buoyancy it would give explicitly, src/resolved/fictitious_domain.hpp)
+    fluid_ = std::make_unique<fluid::Solver>(root, domain_, root.has("resolved") ? Vec3{} : settings_.gravity,
+                                             decomposition_);
   if (root.documenting() || root.has("coupling")) {
     if (!fluid_) root.fail("coupling", "a 'coupling' section without a 'fluid' section", "a 'fluid' section as well");
     const auto model =

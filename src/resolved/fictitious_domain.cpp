@@ -30,10 +30,11 @@ FictitiousDomain::FictitiousDomain(Params& root, fluid::Solver& fluid, dem::Part
        "resolved CFD-DEM (fictitious domain, docs/resolved.md): every particle is a resolved sphere moved by the "
        "fluid's forcing; needs a 'fluid' section and excludes 'coupling'"});
   implicit_ = section.choice({"forcing", "-",
-                               "implicit: the bodies' velocity is imposed through a penalty term inside the momentum "
-                               "predictor and the projection (robust at any viscous time step); explicit: imposed on "
-                               "the predicted velocity before the projection, as seed 000 lines 471-510 "
-                               "(docs/resolved.md: accurate only while nu dt / h^2 << 1)"},
+                               "forcing of the fixed bodies: implicit = their velocity imposed through a penalty term "
+                               "inside the momentum predictor and the projection (accurate at any viscous number nu "
+                               "dt / h^2); explicit = imposed on the predicted velocity before the projection, as seed "
+                               "000 lines 471-510 (drag too low unless nu dt / h^2 << 1). Particles: always explicit "
+                               "(docs/resolved.md)"},
                               {"implicit", "explicit"}, "implicit") == "implicit";
   radiusOffsetCells_ = section.real(
       {"radius_offset", "cells",
@@ -130,7 +131,7 @@ FictitiousDomain::FictitiousDomain(Params& root, fluid::Solver& fluid, dem::Part
   angularColumn_ = particles.addColumn("resolved_fluid_angular_momentum", Vec3{});
   knownColumn_ = particles.addColumn("resolved_fluid_momentum_known", 0.0);
   particles.enableExternalForces();
-  if (!implicit_) fluid.setPredictorHook([this](Field(&u)[3], double dt, double gamma0) { impose(u, dt, gamma0); });
+  fluid.setPredictorHook([this](Field(&u)[3], double dt, double gamma0) { impose(u, dt, gamma0); });
 }
 
 Body FictitiousDomain::particleBody(const dem::ParticleSet& p, std::size_t i) const {
@@ -146,8 +147,12 @@ Body FictitiousDomain::particleBody(const dem::ParticleSet& p, std::size_t i) co
 void FictitiousDomain::impose(Field (&u)[3], double dt, double gamma0) {
   // Bodies one after the other (a face two bodies cover takes the later one's velocity in the
   // proportion it covers). Fixed bodies first, then particles in the set's order: deterministic.
+  // (fixed bodies with the implicit forcing are held by their penalty instead: setPenalty)
   std::size_t k = 0;
-  for (const FixedBody& f : fixed_) forcingSums_[k++] = imposeRigidMotion(forcingBody(f.body), box_, u, rho_, gamma0, dt);
+  for (const FixedBody& f : fixed_) {
+    if (!implicit_) forcingSums_[k] = imposeRigidMotion(forcingBody(f.body), box_, u, rho_, gamma0, dt);
+    ++k;
+  }
   for (const Body& b : particleBodies_) forcingSums_[k++] = imposeRigidMotion(forcingBody(b), box_, u, rho_, gamma0, dt);
 }
 
@@ -164,6 +169,15 @@ void FictitiousDomain::fluidStep(fluid::Solver& fluid, dem::ParticleSet& particl
   }
   const std::size_t n = nf + owned.size();
   forcingSums_.assign(n, FaceSums{});
+  // The explicit forcing holds the no-slip condition to O(nu dt / h^2) only (docs/resolved.md).
+  const double h = std::min({box_.grid.spacing.x, box_.grid.spacing.y, box_.twoD ? box_.grid.spacing.y : box_.grid.spacing.z});
+  const double viscousNumber = fluid.viscosity() / rho_ * dt / (h * h);
+  if (!viscousWarned_ && (!owned.empty() || (!implicit_ && nf > 0)) && viscousNumber > 0.1) {
+    spdlog::warn("resolved: the explicit forcing with nu dt / h^2 = {:.3g} > 0.1 lets fluid through the bodies (drag "
+                 "too low); a fluid step below {:.3g} s keeps it at 0.02 (docs/resolved.md)",
+                 viscousNumber, 0.02 * h * h * rho_ / fluid.viscosity());
+    viscousWarned_ = true;
+  }
 
   // Implicit forcing: the penalty K and the K-weighted body velocity of the cells the bodies cover
   // (the fluid solver's implicit drag term), for the BDF2 step of a constant dt (gamma0 = 3/2; 1 on
@@ -178,8 +192,6 @@ void FictitiousDomain::fluidStep(fluid::Solver& fluid, dem::ParticleSet& particl
   if (implicit_) {
     for (std::size_t b = 0; b < nf; ++b)
       forcingSums_[b] = implicitForcingLoad(forcingBody(fixed_[b].body), box_, u, diagonal);
-    for (std::size_t q = 0; q < owned.size(); ++q)
-      forcingSums_[nf + q] = implicitForcingLoad(forcingBody(particleBodies_[q]), box_, u, diagonal);
   }
 
   // Fluid momentum inside each body after the projection: the rigid-body correction rho dI/dt
@@ -262,7 +274,6 @@ void FictitiousDomain::setPenalty(fluid::Solver& fluid, double diagonal) {
     });
   };
   for (const FixedBody& f : fixed_) add(f.body);
-  for (const Body& b : particleBodies_) add(b);
   for (std::size_t q : penaltyCells_)
     for (int c = 0; c < 3; ++c) fields.particleVelocity[c].data()[q] /= K.data()[q];
 }

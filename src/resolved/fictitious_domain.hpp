@@ -4,13 +4,15 @@
 // imposed on it as a body force (docs/resolved.md).
 //
 // One fluid (coupling) step, FictitiousDomain::fluidStep (seed lines 471-510):
-//   1. momentum predictor on the whole domain (fluid::Solver, u-hat);
-//   2. in the faces each body covers, u-tilde = u-hat + phi (U + omega x r - u-hat) (forcing.hpp), the
-//      force of that forcing summed per body (fluid::Solver::setPredictorHook);
+//   1. momentum predictor on the whole domain (fluid::Solver, u-hat); fixed bodies with the implicit
+//      forcing (resolved.forcing, the default) are held by a penalty term inside it (forcing.hpp);
+//   2. explicit forcing (particles; fixed bodies with forcing: explicit): in the faces each body
+//      covers, u-tilde = u-hat + phi (U + omega x r - u-hat) (forcing.hpp), the force of that forcing
+//      summed per body (fluid::Solver::setPredictorHook);
 //   3. pressure projection (fluid::Solver);
 //   4. hydrodynamic force and torque of each body: the forcing's, the rigid-body correction for the
-//      fluid inside it, and the buoyancy the hydrostatic pressure would give (the fluid carries
-//      gravity) (seed eqs. 2.15-2.25, lines 411-464);
+//      fluid inside it, and the buoyancy (the fluid of a resolved case carries no gravity: it solves
+//      for the pressure less the hydrostatic part) (seed eqs. 2.15-2.25, lines 411-464);
 //   5. the DEM particles' external force and torque set to theirs: the DEM sub-steps then integrate
 //      their motion and collisions (time.coupling_interval DEM steps per fluid step).
 // Bodies: every DEM particle is a free resolved sphere; `resolved.bodies` adds fixed spheres and 2D
@@ -87,6 +89,7 @@ class FictitiousDomain {
   Vec3 gravity_;
   bool distributed_ = false;
   bool implicit_ = true;                  // resolved.forcing
+  bool viscousWarned_ = false;            // the explicit forcing's nu dt / h^2 warning, given once
   std::vector<std::size_t> penaltyCells_;  // cells with K > 0 (implicit forcing)
   std::vector<FixedBody> fixed_;
   // Per step (set by fluidStep before the fluid step, read by the hook).
