@@ -19,6 +19,7 @@
 #include "io/checkpoint.hpp"
 #include "parallel/environment.hpp"
 #include "parallel/exchange.hpp"
+#include "parallel/halo.hpp"
 
 namespace gf::app {
 
@@ -124,12 +125,30 @@ parallel::Decomposition decompositionOf(Params& root, const Domain& domain) {
     const Vec3 n = fluid.vec3({"cells", "-", "grid cells per direction [nx, ny, nz]; nz = 1 is 2D"}, Vec3{16, 16, 16});
     for (int a = 0; a < 3; ++a) cells[a] = std::max(1, static_cast<int>(n[a]));
   }
+  parallel::Decomposition d;
   try {
-    return parallel::Decomposition(domain, domain.decomposition, env.size(), env.rank(), cells);
+    d = parallel::Decomposition(domain, domain.decomposition, env.size(), env.rank(), cells);
   } catch (const std::invalid_argument& e) {
     root.section({"domain"}).fail("decomposition", e.what(),
                                   fmt::format("auto or [px, py, pz] with px * py * pz = {} ranks", env.size()));
   }
+  // A grid axis split among ranks needs the ghost layers plus the shared face in every box
+  // (parallel/halo.hpp): refused here, before anything runs.
+  using parallel::kMinCellsPerRank;
+  if (root.has("fluid"))
+    for (int a = 0; a < 3; ++a) {
+      if (d.layout()[a] < 2) continue;
+      int fewest = cells[a];
+      for (int r = 0; r < d.ranks(); ++r) fewest = std::min(fewest, d.cellCount(r)[a]);
+      if (fewest < kMinCellsPerRank)
+        root.section({"domain"}).fail(
+            "decomposition", fmt::format("{} ({} ranks along {} for {} cells: {} cells in the smallest box)",
+                                         d.describe(), d.layout()[a], "xyz"[a], cells[a], fewest),
+            fmt::format("at least {} cells per rank along a split axis (two ghost layers and the shared face): at most "
+                        "{} ranks along {}",
+                        kMinCellsPerRank, cells[a] / kMinCellsPerRank, "xyz"[a]));
+    }
+  return d;
 }
 }  // namespace
 
@@ -149,10 +168,6 @@ Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptio
   const auto initial = options.restartFile ? dem::InitialParticles::FromCheckpoint : dem::InitialParticles::Insert;
   dem_ = std::make_unique<dem::System>(root, domain_, settings_.gravity, initial, decomposition_);
   checkTimeStep(root);
-  if (decomposition_.distributed() && root.has("coupling"))
-    root.section({"domain"}).fail(
-        "decomposition", fmt::format("{} ranks for a coupled case", decomposition_.ranks()),
-        "one rank (run without mpirun): DEM-only and fluid-only cases run on several ranks, coupled ones not yet");
   if (root.documenting() || root.has("fluid"))
     // (resolved CFD-DEM: the fluid solves for the pressure less the hydrostatic part; the bodies get
     // the buoyancy it would give explicitly, src/resolved/fictitious_domain.hpp)
@@ -162,7 +177,9 @@ Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptio
     if (!fluid_) root.fail("coupling", "a 'coupling' section without a 'fluid' section", "a 'fluid' section as well");
     const auto model =
         fluid_->model() == fluid::MomentumModel::A ? coupling::ExchangeModel::A : coupling::ExchangeModel::B;
-    coupler_ = std::make_unique<coupling::Coupler>(root, fluid_->grid(), domain_.periodic, settings_.gravity, model);
+    // (split among the ranks as the fluid's grid, whose boxes the DEM's are)
+    coupler_ = std::make_unique<coupling::Coupler>(root, fluid_->grid(), domain_.periodic, settings_.gravity, model,
+                                                   &fluid_->decomposition());
     coupler_->setCoarseGrainingByMaterial(dem_->coarseGrainingByMaterial());  // insertion[].coarse_graining
     if (!root.documenting()) initialiseCoupling();
   }
@@ -205,7 +222,7 @@ void Simulation::initialiseCoupling() {
 }
 
 void Simulation::checkCouplingInterval() {
-  if (dem_->particles().size() == 0) return;
+  if (dem_->globalParticleCount() == 0) return;  // (collective under MPI, as what follows)
   // Coupling-interval criterion (seed 000 eq. 5.30, tables 5.4/5.5), in the Stokes limit (slip 0).
   const coupling::CouplingIntervalCheck check = coupler_->checkCouplingInterval(
       settings_.demStep, settings_.demStepsPerCouplingStep, dem_->particles(), fluidView(), 0.0);
@@ -213,9 +230,14 @@ void Simulation::checkCouplingInterval() {
 }
 
 coupling::FluidView Simulation::fluidView() {
-  // The coupling reads interior cells only (FluidView, coupler.hpp): no ghost fills.
+  // The coupling reads interior cells only (FluidView, coupler.hpp): no ghost fills; on several
+  // ranks also the ghost cells across the cuts, the neighbours' cells (one exchange for the six).
   fluid_->cellVelocity(fluidVelocity_, fluid::CellGhosts::Left);
   fluid_->pressureGradient(fluidPressureGradient_, fluid::CellGhosts::Left);
+  if (decomposition_.distributed())
+    parallel::fillGhosts({&fluidVelocity_[0], &fluidVelocity_[1], &fluidVelocity_[2], &fluidPressureGradient_[0],
+                          &fluidPressureGradient_[1], &fluidPressureGradient_[2]},
+                         fluid_->decomposition());
   coupling::FluidView view;
   for (int c = 0; c < 3; ++c) {
     view.velocity[c] = &fluidVelocity_[c];

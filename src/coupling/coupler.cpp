@@ -18,6 +18,8 @@
 #include "coupling/loops.hpp"
 #include "coupling/forces.hpp"
 #include "coupling/smoothing.hpp"
+#include "parallel/exchange.hpp"
+#include "parallel/halo.hpp"
 
 namespace gf::coupling {
 namespace {
@@ -116,8 +118,10 @@ std::vector<std::size_t> previousIndexById(const std::vector<std::int64_t>& prev
 }  // namespace
 
 Coupler::Coupler(Params& root, const CartesianGrid& grid, const std::array<bool, 3>& periodic, const Vec3& gravity,
-                 ExchangeModel model)
-    : topology_{grid, periodic}, gravity_(gravity) {
+                 ExchangeModel model, const parallel::Decomposition* decomposition)
+    : topology_(decomposition && decomposition->distributed() ? GridTopology(grid, *decomposition)
+                                                              : GridTopology(grid, periodic)),
+      gravity_(gravity) {
   Params s = root.section({"coupling", "", "unresolved CFD-DEM coupling (docs/coupling.md)"});
   settings_ = readSettings(s);
   settings_.model = model;
@@ -151,6 +155,10 @@ Coupler::Coupler(Params& root, const CartesianGrid& grid, const std::array<bool,
     fd.parcelK = f.real({"parcel_k", "-", "k of the parcel correction c_corr (seed 003 eq. 3.36)", Range::nonNegative()},
                         0.05);
   }
+  if (!s.documenting() && topology_.distributed() && drag_->polydisperse())
+    s.fail("drag_law", settings_.dragLaw + " on " + std::to_string(decomposition->ranks()) + " ranks",
+           "a monodisperse drag law on several ranks (the per-cell size statistics of the polydisperse laws are "
+           "not yet summed across the ranks' cuts), or one rank");
   if (!s.documenting() && settings_.dragCorrection == DragCorrection::Filtered &&
       settings_.dragLaw != "beetstra" && settings_.dragLaw != "beetstra_polydisperse")
     s.fail("drag_correction", "filtered with drag_law: " + settings_.dragLaw,
@@ -161,27 +169,62 @@ Coupler::Coupler(Params& root, const CartesianGrid& grid, const std::array<bool,
     vorticity_[a] = Field(grid);
     divTau_[a] = Field(grid);
   }
-  // the cells stencils reach: interior rows (deposits zero and sum only these)
-  for (int k = 0; k < grid.cells[2]; ++k)
-    for (int j = 0; j < grid.cells[1]; ++j)
-      deposit_.runs.push_back({topology_.flat(0, j, k), static_cast<std::size_t>(grid.cells[0])});
-  // ghost cell -> its source (periodic: wrapped image; wall: nearest interior cell, i.e. zero
-  // normal gradient), listed once so that fillGhosts is one gather
+  // the cells stencils reach: interior rows (deposits zero and sum only these); on a decomposed
+  // grid also the ghost rows, whose sums go to the neighbours (sumDepositGhosts)
   const auto& n = grid.cells;
   const int g = grid.ghosts;
-  auto source = [&](int i, int a) { return periodic[a] ? topology_.mapIndex(i, a) : std::clamp(i, 0, n[a] - 1); };
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j) interiorRuns_.push_back({topology_.flat(0, j, k), static_cast<std::size_t>(n[0])});
+  if (!topology_.distributed()) {
+    deposit_.runs = interiorRuns_;
+  } else {
+    for (int k = -g; k < n[2] + g; ++k)
+      for (int j = -g; j < n[1] + g; ++j)
+        deposit_.runs.push_back({topology_.flat(-g, j, k), static_cast<std::size_t>(n[0] + 2 * g)});
+  }
+  // ghost cell -> its source (periodic: wrapped image; wall: nearest interior cell, i.e. zero
+  // normal gradient), listed once so that fillGhosts is one gather; a ghost cell beyond a side
+  // shared with a neighbour rank is the neighbour's (parallel::fillGhosts)
+  const GridTopology& t = topology_;
+  auto source = [&](int i, int a) { return t.periodic[a] ? t.mapIndex(i, a) : std::clamp(i, 0, n[a] - 1); };
+  auto beyondCut = [&](int i, int a) { return (i < 0 && t.shared[a][0]) || (i >= n[a] && t.shared[a][1]); };
   for (int k = -g; k < n[2] + g; ++k)
     for (int j = -g; j < n[1] + g; ++j)
       for (int i = -g; i < n[0] + g; ++i) {
-        if (grid.isInterior(i, j, k)) continue;
+        if (grid.isInterior(i, j, k) || beyondCut(i, 0) || beyondCut(j, 1) || beyondCut(k, 2)) continue;
         ghostTarget_.push_back(solidFraction_.index(i, j, k));
         ghostSource_.push_back(solidFraction_.index(source(i, 0), source(j, 1), source(k, 2)));
       }
 }
 
 void Coupler::fillGhosts(Field& f) const {
+  // (this rank's own sides first: the neighbours' corner and edge ghosts come from theirs)
   double* d = f.data().data();
   for (std::size_t q = 0; q < ghostTarget_.size(); ++q) d[ghostTarget_[q]] = d[ghostSource_[q]];
+  if (topology_.distributed()) parallel::fillGhosts(f, *topology_.decomposition);
+}
+
+void Coupler::sumDepositGhosts(int channels) {
+  if (!topology_.distributed()) return;
+  // each channel as a field (every cell: the deposit's runs cover the ghost rows too), the
+  // neighbours' ghost deposits added to this rank's cells, then back into the interleaved sums
+  const std::size_t cells = solidFraction_.data().size();
+  const auto c = static_cast<std::size_t>(channels);
+  if (channelFields_.size() < c) channelFields_.resize(c);
+  std::vector<Field*> fields;
+  for (std::size_t ch = 0; ch < c; ++ch) {
+    Field& f = channelFields_[ch];
+    if (f.data().size() != cells) f = Field(topology_.grid);
+    fields.push_back(&f);
+  }
+  double* merged = deposit_.merged.data();
+  forEachIndex(static_cast<std::int64_t>(cells), 4 * channels, [&](std::int64_t q) {
+    for (std::size_t ch = 0; ch < c; ++ch) fields[ch]->data()[static_cast<std::size_t>(q)] = merged[q * channels + ch];
+  });
+  parallel::sumGhosts(fields, *topology_.decomposition);
+  forEachIndex(static_cast<std::int64_t>(cells), 4 * channels, [&](std::int64_t q) {
+    for (std::size_t ch = 0; ch < c; ++ch) merged[q * channels + ch] = fields[ch]->data()[static_cast<std::size_t>(q)];
+  });
 }
 
 void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFields& fields) {
@@ -194,6 +237,7 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   const std::size_t cells = solidFraction_.data().size();
   const double* radius = particles.radius.data();
   auto particleVolume = [radius](std::size_t p) { return force::sphereVolume(2.0 * radius[p]); };
+  const std::uint8_t* ghost = ghostFlags(particles);  // (ghost particles: deposit and count nothing)
   volumeSums_.assign(static_cast<std::size_t>(omp_get_max_threads()), 0.0);
   // In the order of Simulation::advance (forces, DEM steps, void fraction, fluid sources) the
   // exchange of the pending forces goes with the same stencils: one deposit pass for the volume
@@ -215,7 +259,7 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   stencilsKept_ = !transient;
   auto buildAndSum = [&](int thread, std::size_t begin, std::size_t end) {
     double sum = volumeSums_[thread];
-    for (std::size_t p = begin; p < end; ++p) sum += particleVolume(p);
+    for (std::size_t p = begin; p < end; ++p) sum += ghost && ghost[p] ? 0.0 : particleVolume(p);
     volumeSums_[thread] = sum;
     if (transient) {
       ParticleStencils& piece = pieceStencils_[static_cast<std::size_t>(thread)];
@@ -233,7 +277,8 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
       const ExchangeData data = exchangeData(particles);
       volume = depositChannels<1 + channelsOf(L)>(
                    stencils_, cells, deposit_,
-                   [&particleVolume, data](std::size_t p, auto& v) {
+                   [&particleVolume, data, ghost](std::size_t p, auto& v) {
+                     if (ghost && ghost[p]) return std::fill(std::begin(v), std::end(v), 0.0);
                      v[0] = particleVolume(p);
                      exchangeValues<L>(data, p, v + 1);
                    },
@@ -243,10 +288,12 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
     });
   } else {
     volume = depositChannels<1>(
-                 stencils_, cells, deposit_, [&](std::size_t p, double (&v)[1]) { v[0] = particleVolume(p); },
+                 stencils_, cells, deposit_,
+                 [&](std::size_t p, double (&v)[1]) { v[0] = ghost && ghost[p] ? 0.0 : particleVolume(p); },
                  buildAndSum)
                  .data();
   }
+  sumDepositGhosts(static_cast<int>(volumeStride));
   exchangeDeposited_ = fuse;
   particleVolume_ = 0.0;
   for (double sum : volumeSums_) particleVolume_ += sum;
@@ -256,7 +303,8 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   double* eps = fields.voidFraction.data().data();
   const double cellVolume = topology_.grid.cellVolume();
   const double minEps = settings_.minVoidFraction;
-  if (settings_.smoothingAuto && !(settings_.smoothingLength > 0.0) && particles.size() > 0)
+  if (settings_.smoothingAuto && !(settings_.smoothingLength > 0.0) &&
+      (topology_.distributed() ? parallel::anyOverRanks(particles.size() > 0) : particles.size() > 0))
     chooseSmoothingLength(particles);
   const bool smoothing = settings_.smoothingLength > 0.0;
   auto toVoidFraction = [&](std::size_t q) {  // returns the volume clipped by min_void_fraction
@@ -264,10 +312,10 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
     eps[q] = std::max(e, minEps);
     return e < minEps ? (minEps - e) * cellVolume : 0.0;
   };
-  const auto* runs = deposit_.runs.data();
-  const auto runCount = static_cast<std::int64_t>(deposit_.runs.size());
+  const auto* runs = interiorRuns_.data();
+  const auto runCount = static_cast<std::int64_t>(interiorRuns_.size());
   const std::int64_t cellsPerRun = topology_.grid.cells[0];
-  runSums_.resize(deposit_.runs.size());
+  runSums_.resize(interiorRuns_.size());
   forEachIndex(runCount, 4 * cellsPerRun, [&](std::int64_t r) {
     double deposited = 0.0, clipped = 0.0;
     for (std::size_t q = runs[r][0]; q < runs[r][0] + runs[r][1]; ++q) {
@@ -289,6 +337,10 @@ void Coupler::computeVoidFraction(const dem::ParticleSet& particles, CouplingFie
   for (const auto& sums : runSums_) {
     depositedVolume_ += sums[0];
     clippedVolume_ += sums[1];
+  }
+  if (topology_.distributed()) {
+    const std::vector<double> all = parallel::sumOverRanks(std::vector<double>{particleVolume_, depositedVolume_, clippedVolume_});
+    particleVolume_ = all[0], depositedVolume_ = all[1], clippedVolume_ = all[2];
   }
   fillGhosts(fields.voidFraction);
 }
@@ -324,6 +376,14 @@ void Coupler::packSamples(const FluidView& fluid, const CouplingFields& fields, 
     return;
   }
   samples_.resize(cells * k);
+  if (topology_.distributed()) {
+    // every cell, ghosts included: particles near a cut sample the neighbours' cells
+    forEachIndex(static_cast<std::int64_t>(cells), 4 * k, [&](std::int64_t q) {
+      for (int ch = 0; ch < k; ++ch) samples_[static_cast<std::size_t>(q) * k + ch] = sampleSource_[ch][q];
+    });
+    if (settings_.fluxVelocity) scaleToFluxVelocity(fields.voidFraction);
+    return;
+  }
   // pieces of rows in parallel (disjoint writes); a piece per call, not a row (the 2 x 30 x 90
   // bed's rows hold 2 cells: a call per row cost as much as the copying)
   const auto& n = topology_.grid.cells;
@@ -383,14 +443,20 @@ void Coupler::scaleToFluxVelocity(const Field& eps) {
   // particle-free cell, whose particles would feel too little drag (they rest on a distributor
   // instead). The exchange keeps the fluid's own u_c as reference (depositExchange), so the drag
   // given back to the fluid still equals the particles' drag.
+  // (decomposed grid: also the first ghost layer across a cut, which particles near it sample)
   const auto& n = topology_.grid.cells;
+  int first[3], last[3];
+  for (int a = 0; a < 3; ++a) {
+    first[a] = topology_.shared[a][0] ? -1 : 0;
+    last[a] = topology_.shared[a][1] ? n[a] + 1 : n[a];
+  }
   const int k = sampleChannels_;
   const double* e = eps.data().data();
   for (int a = 0; a < 3; ++a) {
     const std::ptrdiff_t st = eps.stride(a);
-    for (int kk = 0; kk < n[2]; ++kk)
-      for (int j = 0; j < n[1]; ++j)
-        for (int i = 0; i < n[0]; ++i) {
+    for (int kk = first[2]; kk < last[2]; ++kk)
+      for (int j = first[1]; j < last[1]; ++j)
+        for (int i = first[0]; i < last[0]; ++i) {
           const std::size_t q = eps.index(i, j, kk);
           const double ec = e[q], em = 0.5 * (ec + e[q - st]), ep = 0.5 * (ec + e[q + st]);
           samples_[q * k + a] *= 2.0 * em * ep / (ec * (em + ep));
@@ -482,6 +548,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   const bool torqueOut = w.fluidTorque;
   const Vec3 buoyancy = w.buoyancy ? force::buoyancy(rho, 1.0, gravity_) : Vec3{};  // per volume
   const TrilinearSampler sampler(topology_);
+  const std::uint8_t* const ghost = ghostFlags(particles);  // (ghosts count in no sum)
   constexpr int kBlock = 32;
   const auto n = static_cast<std::int64_t>(particles.size());
   // the particle's columns (ParticleSet::addColumn), as plain pointers copied into the block loop
@@ -571,7 +638,9 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       if (keepOther) otherOut[p] = exchangedOther;
       particles.externalForce[p] = fDrag + exchangedOther + particleOnly;
       if (torqueOut) particles.externalTorque[p] = torque;
-      const Vec3 exchanged = fDrag + exchangedOther;
+      // (a ghost's forces are its owner's to count: weight 0, else 1, which leaves every bit)
+      const double own = ghost && ghost[p] ? 0.0 : 1.0;
+      const Vec3 exchanged = own * (fDrag + exchangedOther);
       sum[0] += exchanged.x, sum[1] += exchanged.y, sum[2] += exchanged.z;
       exchangedSquared[q] = dot(exchanged, exchanged);
     }
@@ -621,9 +690,11 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
     throw std::invalid_argument("coupling: virtual mass force needs FluidView::timeStep > 0");
   if (w.saffmanMeiLift || w.magnusLift || w.fluidTorque) {
     computeVorticity(topology_, fluid.velocity, vorticity_);  // interior cells (all packSamples reads)
+    if (topology_.distributed()) parallel::fillGhosts({&vorticity_[0], &vorticity_[1], &vorticity_[2]}, *topology_.decomposition);
   }
   if (w.viscousStress && !fluid.viscousStressDivergence[0]) {
     computeViscousStressDivergence(topology_, fluid.velocity, fluid.viscosity, divTau_);  // interior cells
+    if (topology_.distributed()) parallel::fillGhosts({&divTau_[0], &divTau_[1], &divTau_[2]}, *topology_.decomposition);
   }
   // Per-thread packing (forcePass) for trilinear sampling, which reads the planes next to a
   // particle's own (not across a periodic z boundary, not after the flux rescaling).
@@ -633,7 +704,8 @@ void Coupler::computeParticleForces(const FluidView& fluid, const CouplingFields
   const double bufferBytes = static_cast<double>(rangeThreads) * static_cast<double>(solidFraction_.data().size()) *
                              13.0 * sizeof(double);  // (13: the most channels)
   planesPerThread_ = settings_.interpolation == InterpolationMode::Trilinear && !settings_.fluxVelocity &&
-                     !topology_.periodic[2] && rangeThreads > 1 && bufferBytes <= kThreadSamplesBytes;
+                     !topology_.periodic[2] && !topology_.distributed() && rangeThreads > 1 &&
+                     bufferBytes <= kThreadSamplesBytes;
   packSamples(fluid, fields, planesPerThread_);
   if (w.virtualMass && previousSlipFromSlip_) keepSlipAsPrevious(particles);
   previousSlipFromSlip_ = false;
@@ -731,21 +803,28 @@ ParticleCorrection Coupler::particleCorrection(const FluidView& fluid, const dem
       c.parcelCorrectionByMaterial = parcelCorrectionByMaterial_.data();
       c.material = particles.type.data();
     }
-    if (!(filterLength_ > 0.0) && particles.size() > 0) {
-      // d_prim (given, or the Sauter mean primary diameter) and the particles' mean density
+    if (!(filterLength_ > 0.0) && (topology_.distributed() || particles.size() > 0)) {
+      // d_prim (given, or the Sauter mean primary diameter) and the particles' mean density (of
+      // every rank's own particles)
       double volume = 0.0, volumeOverDiameter = 0.0, mass = 0.0;
+      const std::uint8_t* ghost = ghostFlags(particles);
       for (std::size_t p = 0; p < particles.size(); ++p) {
+        if (ghost && ghost[p]) continue;
         const double d = 2.0 * particles.radius[p];
         volume += force::sphereVolume(d);
         volumeOverDiameter += force::sphereVolume(d) / (d / cg.factorOf(particles.type[p]));
         mass += particles.mass[p];
       }
+      if (topology_.distributed()) {
+        const std::vector<double> all = parallel::sumOverRanks(std::vector<double>{volume, volumeOverDiameter, mass});
+        volume = all[0], volumeOverDiameter = all[1], mass = all[2];
+      }
       const double dPrim = fd.primaryDiameter > 0.0 ? fd.primaryDiameter : volume / volumeOverDiameter;
       const double g = norm(gravity_);
       if (!(g > 0.0)) throw std::invalid_argument("coupling: drag_correction: filtered needs gravity (L_char = u_t^2/g Fr^-2/3)");
       const double ut = drag::beetstraTerminalVelocity(dPrim, mass / volume, fluid.density, fluid.viscosity, g);
-      filterLength_ = drag::filteredDragLength(ut, dPrim, g);
-      spdlog::info("coupling: filtered drag (Radl & Sundaresan 2014): d_prim {:.6g} m, u_t {:.6g} m/s, L_char {:.6g} "
+      if (volume > 0.0) filterLength_ = drag::filteredDragLength(ut, dPrim, g);
+      if (volume > 0.0) spdlog::info("coupling: filtered drag (Radl & Sundaresan 2014): d_prim {:.6g} m, u_t {:.6g} m/s, L_char {:.6g} "
                    "m, filter size {:.6g} m, parcel correction {:.6g} at alpha {:g}",
                    dPrim, ut, filterLength_, c.filterSize, c.parcelCorrection, alpha);
     }
@@ -808,13 +887,20 @@ void Coupler::chooseSmoothingLength(const dem::ParticleSet& particles) {
   // get their 1.77 mm and 2.23 mm)
   const double alpha = settings_.coarseGraining.largest();
   double volume = 0.0, volumeOverDiameter = 0.0;
+  const std::uint8_t* ghost = ghostFlags(particles);
   for (std::size_t p = 0; p < particles.size(); ++p) {
+    if (ghost && ghost[p]) continue;
     const double d = 2.0 * particles.radius[p];
     volume += force::sphereVolume(d);
     volumeOverDiameter += force::sphereVolume(d) / d;
   }
   const CartesianGrid& g = topology_.grid;
-  const double meanFraction = volume / (g.cellVolume() * static_cast<double>(g.interiorCellCount()));
+  auto cells = static_cast<double>(g.interiorCellCount());
+  if (topology_.distributed()) {  // (every rank's own particles and cells)
+    const std::vector<double> all = parallel::sumOverRanks(std::vector<double>{volume, volumeOverDiameter, cells});
+    volume = all[0], volumeOverDiameter = all[1], cells = all[2];
+  }
+  const double meanFraction = volume / (g.cellVolume() * cells);
   const double sauter = volume / volumeOverDiameter;
   settings_.smoothingLength = autoSmoothingLength(alpha, sauter, meanFraction);
   spdlog::info("coupling: smoothing_length auto = {:.6g} m ({:.4g} d32, parcel d32 = {:.6g} m, alpha = {:g}, <phi_p> = {:.4g}; "
@@ -908,6 +994,11 @@ void Coupler::fillFluidSources(CouplingFields& fields) {
     const std::size_t target = ghostTarget_[q], source = ghostSource_[q];  // source: an interior cell
     for (double* d : exchange) d[target] = d[source];
   });
+  if (topology_.distributed())  // (across the cuts: the neighbours' cells, one exchange for all 7)
+    parallel::fillGhosts({&fields.forceDensity[0], &fields.forceDensity[1], &fields.forceDensity[2],
+                          &fields.dragCoefficient, &fields.particleVelocity[0], &fields.particleVelocity[1],
+                          &fields.particleVelocity[2]},
+                         *topology_.decomposition);
   updateMomentumBalance(fields, implicit, exchangeSet_->size());
   exchangePending_ = exchangeDeposited_ = false;
 }
@@ -979,10 +1070,14 @@ void Coupler::depositExchange(CouplingFields& fields, bool implicit) {
       constexpr ExchangeLayout L = decltype(l)::value;
       stride = channelsOf(L);
       const ExchangeData data = exchangeData(*exchangeSet_);
-      sum = depositChannels<channelsOf(L)>(stencils_, cells, deposit_, [data](std::size_t p, auto& v) {
-              exchangeValues<L>(data, p, v);
-            }).data();
+      const std::uint8_t* ghost = ghostFlags(*exchangeSet_);
+      depositChannels<channelsOf(L)>(stencils_, cells, deposit_, [data, ghost](std::size_t p, auto& v) {
+        if (ghost && ghost[p]) return std::fill(std::begin(v), std::end(v), 0.0);
+        exchangeValues<L>(data, p, v);
+      });
     });
+    sumDepositGhosts(static_cast<int>(stride));
+    sum = deposit_.merged.data();
   }
   // where the explicit force, beta and beta (u_p - u_f@p) lie in a cell's sums (-1: zero)
   const int forceChannel = layout == ExchangeLayout::DragOnly ? -1 : 0;
@@ -1005,8 +1100,8 @@ void Coupler::depositExchange(CouplingFields& fields, bool implicit) {
                    fields.particleVelocity[2].data().data()};
   const double* uf[3] = {u[0]->data().data(), u[1]->data().data(), u[2]->data().data()};
   double* drag = fields.dragCoefficient.data().data();
-  const auto* runs = deposit_.runs.data();
-  forEachIndex(static_cast<std::int64_t>(deposit_.runs.size()), 8 * topology_.grid.cells[0], [&](std::int64_t r) {
+  const auto* runs = interiorRuns_.data();
+  forEachIndex(static_cast<std::int64_t>(interiorRuns_.size()), 8 * topology_.grid.cells[0], [&](std::int64_t r) {
     const auto& run = runs[r];  // an interior row; rows in parallel (disjoint writes)
     for (std::size_t q = run[0]; q < run[0] + run[1]; ++q) {
       const double* v = &sum[q * stride];
@@ -1040,12 +1135,14 @@ void Coupler::updateMomentumBalance(const CouplingFields& fields, bool implicit,
   // the particle side as summed by the force pass (same terms, same order), unless the particle
   // set was reordered since
   const ExchangeData data = particleForceSumsValid_ ? ExchangeData{} : exchangeData(*exchangeSet_);
-  const std::array<double, 4> sums =
+  const std::uint8_t* ghost = ghostFlags(*exchangeSet_);
+  std::array<double, 4> sums =
       particleForceSumsValid_
           ? particleForceSums_
           : sumsOverIndices<4>(
                 static_cast<std::int64_t>(particleCount),
                 [&](std::int64_t p, std::array<double, 4>& sum) {
+                  if (ghost && ghost[p]) return;  // (its owner counts it)
                   const Vec3 f = force::drag(data.beta[p], data.slip[p]) + data.other[p];
                   sum[0] += f.x, sum[1] += f.y, sum[2] += f.z;
                   sum[3] += norm(f);
@@ -1064,9 +1161,9 @@ void Coupler::updateMomentumBalance(const CouplingFields& fields, bool implicit,
   const double* uf[3] = {u[0]->data().data(), u[1]->data().data(), u[2]->data().data()};
   const double* drag = fields.dragCoefficient.data().data();
   // interior rows in parallel, the sums per row added in row order (the same bits on any thread count)
-  const auto* runs = deposit_.runs.data();
-  runSums_.resize(deposit_.runs.size());
-  forEachIndex(static_cast<std::int64_t>(deposit_.runs.size()), 8 * topology_.grid.cells[0], [&](std::int64_t r) {
+  const auto* runs = interiorRuns_.data();
+  runSums_.resize(interiorRuns_.size());
+  forEachIndex(static_cast<std::int64_t>(interiorRuns_.size()), 8 * topology_.grid.cells[0], [&](std::int64_t r) {
     std::array<double, 3> sum{};
     for (std::size_t q = runs[r][0]; q < runs[r][0] + runs[r][1]; ++q)
       for (int a = 0; a < 3; ++a) {
@@ -1078,7 +1175,15 @@ void Coupler::updateMomentumBalance(const CouplingFields& fields, bool implicit,
   });
   for (const auto& sum : runSums_)
     for (int a = 0; a < 3; ++a) onFluid[a] += sum[a];
-  balanceError_ = onParticles + onFluid;
+  Vec3 particles = onParticles;
+  if (topology_.distributed()) {  // (every rank's particles and cells: one allreduce)
+    const std::vector<double> all = parallel::sumOverRanks(std::vector<double>
+        {particles.x, particles.y, particles.z, exchangedForceScale_, onFluid.x, onFluid.y, onFluid.z});
+    particles = {all[0], all[1], all[2]};
+    exchangedForceScale_ = all[3];
+    onFluid = {all[4], all[5], all[6]};
+  }
+  balanceError_ = particles + onFluid;
 }
 
 CouplingIntervalCheck Coupler::checkCouplingInterval(double demTimeStep, int demStepsPerFluidStep,
@@ -1094,6 +1199,14 @@ CouplingIntervalCheck Coupler::checkCouplingInterval(double demTimeStep, int dem
       d = dp;
       rhoP = rp;
     }
+  }
+  if (topology_.distributed()) {
+    // the fastest-relaxing particle of all ranks (the lowest rank's among equals)
+    const std::vector<double> bests = parallel::allgather(best >= 0.0 ? best : std::numeric_limits<double>::infinity());
+    const std::vector<double> ds = parallel::allgather(d), rhos = parallel::allgather(rhoP);
+    const auto r = static_cast<std::size_t>(std::min_element(bests.begin(), bests.end()) - bests.begin());
+    if (!std::isfinite(bests[r])) return {};
+    best = bests[r], d = ds[r], rhoP = rhos[r];
   }
   if (best < 0.0) return {};
   return gf::coupling::checkCouplingInterval(demTimeStep, demStepsPerFluidStep, rhoP, d, fluid.density,
@@ -1113,14 +1226,42 @@ void Coupler::save(BinaryWriter& out, const dem::ParticleSet& particles) const {
   // the ids, and the previous slip in their order (the slip itself where it is the previous one:
   // without virtual mass, or before the next force pass copies it); nothing before the first force pass
   const std::size_t slip = particles.findVec3Column(kSlipColumn);
+  const std::size_t previous = particles.findVec3Column(kPreviousSlipColumn);
+  const bool fromPrevious =
+      settings_.forces.virtualMass && !previousSlipFromSlip_ && previous != dem::ParticleSet::kNoColumn;
+  if (topology_.distributed()) {
+    // every rank's own particles, gathered on rank 0 and sorted by id (the same file for any
+    // rank count; only rank 0's writer is written out)
+    parallel::Bytes mine;
+    parallel::Packer pack(mine);
+    const std::uint8_t* ghost = ghostFlags(particles);
+    if (slip != dem::ParticleSet::kNoColumn)
+      for (std::size_t p = 0; p < particles.size(); ++p)
+        if (!(ghost && ghost[p])) {
+          pack.put(particles.id[p]);
+          pack.put(particles.vec3Columns[fromPrevious ? previous : slip].values[p]);
+        }
+    std::vector<std::pair<std::int64_t, Vec3>> all;
+    for (const parallel::Bytes& bytes : parallel::gatherToRoot(mine)) {
+      parallel::Unpacker in(bytes);
+      while (!in.done()) {
+        const auto id = in.get<std::int64_t>();
+        all.emplace_back(id, in.get<Vec3>());
+      }
+    }
+    std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<std::int64_t> ids(all.size());
+    std::vector<Vec3> slips(all.size());
+    for (std::size_t k = 0; k < all.size(); ++k) ids[k] = all[k].first, slips[k] = all[k].second;
+    out.putVector(ids);
+    out.putVector(slips);
+    return;
+  }
   if (slip == dem::ParticleSet::kNoColumn) {
     out.putVector(std::vector<std::int64_t>{});
     out.putVector(std::vector<Vec3>{});
     return;
   }
-  const std::size_t previous = particles.findVec3Column(kPreviousSlipColumn);
-  const bool fromPrevious =
-      settings_.forces.virtualMass && !previousSlipFromSlip_ && previous != dem::ParticleSet::kNoColumn;
   out.putVector(particles.id);
   out.putVector(particles.vec3Columns[fromPrevious ? previous : slip].values);
 }

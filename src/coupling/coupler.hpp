@@ -39,6 +39,7 @@
 #include "coupling/stencil.hpp"
 #include "coupling/void_fraction/void_fraction_scheme.hpp"
 #include "dem/particles.hpp"
+#include "parallel/decomposition.hpp"
 
 namespace gf::coupling {
 
@@ -111,8 +112,16 @@ class Coupler {
   /// Reads section `coupling` of the case. `periodic` as the Domain's, `gravity` for buoyancy,
   /// `model` the fluid's momentum form (fluid.model: A -> -eps grad p, B -> -grad p), which decides
   /// which forces go back to the fluid.
+  ///
+  /// `decomposition`: where the grid and the particles are split among MPI ranks (the fluid
+  /// solver's; must outlive the coupler), `grid` is this rank's box and the particle set holds the
+  /// rank's own particles plus ghost copies of its neighbours' (ParticleSet::ghost). Then deposits
+  /// that fall into ghost cells are summed into their owners' cells (parallel::sumGhosts), the
+  /// samples read the neighbours' cells (the FluidView's fields must have their ghost cells across
+  /// the cuts filled), smoothing crosses the cuts, ghost particles deposit nothing, and the sums
+  /// (particle volume, momentum balance) are over all ranks. nullptr or one rank: the whole grid.
   Coupler(Params& root, const CartesianGrid& grid, const std::array<bool, 3>& periodic, const Vec3& gravity,
-          ExchangeModel model = ExchangeModel::A);
+          ExchangeModel model = ExchangeModel::A, const parallel::Decomposition* decomposition = nullptr);
   // not copyable: deposit_.blocks points at this coupler's particleBlocks_ (a copy's would point
   // at the original's)
   Coupler(const Coupler&) = delete;
@@ -277,7 +286,17 @@ class Coupler {
   void depositExchange(CouplingFields& fields, bool implicit);
   void smoothExchange(CouplingFields& fields, bool implicit) const;
   void updateMomentumBalance(const CouplingFields& fields, bool implicit, std::size_t particleCount);
+  /// The ghost cells of f: beyond walls and one-rank periodic sides from this rank's cells, then
+  /// (decomposed grid) across the cuts from the neighbours.
   void fillGhosts(Field& f) const;
+  /// Decomposed grid: adds the `channels`-interleaved deposit sums in ghost cells (deposit_.merged)
+  /// to their owners' cells and zeroes them; one rank: nothing.
+  void sumDepositGhosts(int channels);
+  /// Under MPI the ghost flags of `particles` (ghosts deposit nothing and count in no sum); nullptr
+  /// where every particle is this rank's own.
+  const std::uint8_t* ghostFlags(const dem::ParticleSet& particles) const {
+    return topology_.distributed() && particles.ghost.size() == particles.size() ? particles.ghost.data() : nullptr;
+  }
   /// Statistics of `particles` into sizeStats_ (classes rebuilt when a diameter is not one of them).
   void updateSizeStatistics(const dem::ParticleSet& particles, bool classVelocities = false);
   /// Adds the fluid-mediated particle-particle friction of the law (yin_sundaresan with
@@ -311,6 +330,10 @@ class Coupler {
   int sampleChannels_ = 4, gradPChannel_ = -1, divTauChannel_ = -1, vorticityChannel_ = -1;
   DepositBuffers deposit_;
   std::vector<std::size_t> ghostTarget_, ghostSource_;  // ghost cell <- interior cell (fillGhosts)
+  // the interior rows of cells {first, count} (deposit_.runs holds these on one rank, and also
+  // the ghost rows where the grid is decomposed: deposits reach ghost cells there)
+  std::vector<std::array<std::size_t, 2>> interiorRuns_;
+  std::vector<Field> channelFields_;  // sumDepositGhosts: one deposit channel each
   // The per-particle exchange data (drag force = beta slip, force::drag) are columns of the
   // particle set; the other exchanged force is written only where the exchange reads it (not in
   // the drag-only layout: there it stays all +0, its fill value, the value the force pass would write).

@@ -6,23 +6,18 @@
 namespace gf::coupling {
 namespace {
 
-/// d(field)/dx_axis at interior cell (i, j, k): central where both neighbours exist (or wrap),
-/// one-sided at walls.
+/// d(field)/dx_axis at interior cell (i, j, k): central where both neighbours exist (inside, wrapped,
+/// or a neighbour rank's ghost cell), one-sided at walls.
 double derivative(const GridTopology& t, const Field& f, int i, int j, int k, int axis) {
   int idx[3] = {i, j, k};
   const int n = t.grid.cells[axis];
   const double h = t.grid.spacing[axis];
   int lo[3] = {i, j, k}, hi[3] = {i, j, k};
-  double span = 2.0 * h;
-  if (t.periodic[axis] || (idx[axis] > 0 && idx[axis] < n - 1)) {
-    lo[axis] = t.mapIndex(idx[axis] - 1, axis);
-    hi[axis] = t.mapIndex(idx[axis] + 1, axis);
-  } else {
-    lo[axis] = std::max(idx[axis] - 1, 0);
-    hi[axis] = std::min(idx[axis] + 1, n - 1);
-    span = (hi[axis] - lo[axis]) * h;
-    if (span == 0.0) return 0.0;
-  }
+  const bool below = t.open(axis, 0) || idx[axis] > 0, above = t.open(axis, 1) || idx[axis] < n - 1;
+  if (below) lo[axis] = t.mapIndex(idx[axis] - 1, axis);
+  if (above) hi[axis] = t.mapIndex(idx[axis] + 1, axis);
+  const double span = ((below ? 1 : 0) + (above ? 1 : 0)) * h;
+  if (span == 0.0) return 0.0;
   return (f(hi[0], hi[1], hi[2]) - f(lo[0], lo[1], lo[2])) / span;
 }
 
@@ -90,24 +85,25 @@ void computeViscousStressDivergence(const GridTopology& t, const Field* const (&
     const int idx[3] = {0, j, k};
     std::ptrdiff_t lo[3], hi[3];  // flat offsets of the neighbours (y, z: of this row; x: interior cells)
     for (int a = 1; a < 3; ++a) {
-      const int l = (t.periodic[a] ? t.mapIndex(idx[a] - 1, a) : std::max(idx[a] - 1, 0)) - idx[a];
-      const int h = (t.periodic[a] ? t.mapIndex(idx[a] + 1, a) : std::min(idx[a] + 1, n[a] - 1)) - idx[a];
+      const int l = (t.open(a, 0) ? t.mapIndex(idx[a] - 1, a) : std::max(idx[a] - 1, 0)) - idx[a];
+      const int h = (t.open(a, 1) ? t.mapIndex(idx[a] + 1, a) : std::min(idx[a] + 1, n[a] - 1)) - idx[a];
       lo[a] = l * f.stride(a);
       hi[a] = h * f.stride(a);
     }
     lo[0] = -1, hi[0] = 1;
-    // x: at i = 0 and i = n - 1 the neighbour across the boundary (wrapped or the cell itself)
+    // x: at i = 0 and i = n - 1 the neighbour across the boundary (wrapped, a neighbour rank's
+    // ghost cell, or the cell itself at a wall)
     const bool periodicX = t.periodic[0];
     const std::size_t first = f.index(0, j, k);
     if (n[0] == 1 || periodicX) {
       // few or wrapped cells along x: cell by cell
       for (int i = 0; i < n[0]; ++i) {
-        std::ptrdiff_t l[3] = {(periodicX ? t.mapIndex(i - 1, 0) : std::max(i - 1, 0)) - i, lo[1], lo[2]};
-        std::ptrdiff_t h[3] = {(periodicX ? t.mapIndex(i + 1, 0) : std::min(i + 1, n[0] - 1)) - i, hi[1], hi[2]};
+        std::ptrdiff_t l[3] = {(t.open(0, 0) ? t.mapIndex(i - 1, 0) : std::max(i - 1, 0)) - i, lo[1], lo[2]};
+        std::ptrdiff_t h[3] = {(t.open(0, 1) ? t.mapIndex(i + 1, 0) : std::min(i + 1, n[0] - 1)) - i, hi[1], hi[2]};
         viscousStressDivergenceRow(in, out, first + i, 1, l, h, false, false, h2, viscosity);
       }
     } else {
-      viscousStressDivergenceRow(in, out, first, n[0], lo, hi, true, true, h2, viscosity);
+      viscousStressDivergenceRow(in, out, first, n[0], lo, hi, !t.open(0, 0), !t.open(0, 1), h2, viscosity);
     }
   });
 }

@@ -39,7 +39,8 @@ struct AxisPosition {
 };
 inline AxisPosition axisPosition(const GridTopology& t, const Vec3& x, int a) {
   double s = (x[a] - t.grid.origin[a]) * t.inverseSpacing[a] - 0.5;
-  if (!t.periodic[a]) s = std::min(std::max(s, 0.0), static_cast<double>(t.grid.cells[a] - 1));
+  if (!t.open(a, 0)) s = std::max(s, 0.0);
+  if (!t.open(a, 1)) s = std::min(s, static_cast<double>(t.grid.cells[a] - 1));
   const int f = floorToInt(s);
   return {f, s - f};
 }
@@ -194,8 +195,8 @@ class TrilinearSampler {
       x.inverseSpacing = t.inverseSpacing[a];
       const int n = t.grid.cells[a];
       // std::min(std::max(s, low), high) is s itself for the infinite bounds of a periodic axis
-      x.low = t.periodic[a] ? -std::numeric_limits<double>::infinity() : 0.0;
-      x.high = t.periodic[a] ? std::numeric_limits<double>::infinity() : static_cast<double>(n - 1);
+      x.low = t.open(a, 0) ? -std::numeric_limits<double>::infinity() : 0.0;
+      x.high = t.open(a, 1) ? std::numeric_limits<double>::infinity() : static_cast<double>(n - 1);
       x.cells = AxisOffsetTable<std::ptrdiff_t>(t, a, stride[a]);
     }
   }

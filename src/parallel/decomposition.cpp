@@ -190,7 +190,7 @@ Layout Decomposition::autoLayout(const Domain& domain, int ranks, std::array<int
       bool fits = true;
       double area = 0.0;
       for (int a = 0; a < 3; ++a) {
-        if (grid && l[a] > cells[a]) fits = false;
+        if (grid && l[a] > 1 && cells[a] < kMinCellsPerRank * l[a]) fits = false;
         const double face = size[(a + 1) % 3] * size[(a + 2) % 3];
         const int cuts = domain.periodic[a] ? (l[a] > 1 ? l[a] : 0) : l[a] - 1;
         area += cuts * face;

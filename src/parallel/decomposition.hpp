@@ -34,6 +34,10 @@ namespace gf::parallel {
 /// What lies beyond one face of a rank's box.
 enum class Side { Physical, Periodic, Shared };
 
+/// Cells a rank's box needs along a split axis of a grid: the two ghost layers and the shared face
+/// (parallel/halo.hpp).
+inline constexpr int kMinCellsPerRank = 3;
+
 /// The layout asked for in the case: {0, 0, 0} = auto.
 using Layout = std::array<int, 3>;
 
@@ -56,9 +60,10 @@ class Decomposition {
   /// boxes overlapping, or volumes that do not add up to the domain's).
   Decomposition(const Domain& domain, std::vector<Box> boxes, int rank, double reach = 0.0);
 
-  /// The layout with least halo surface for `ranks` ranks: among all px*py*pz = ranks with at most
-  /// one rank per cell along each axis, the one whose cuts have the smallest total area (a cut
-  /// across a periodic axis counts once per rank, a bounded one once per interior cut).
+  /// The layout with least halo surface for `ranks` ranks: among all px*py*pz = ranks with at
+  /// least kMinCellsPerRank cells per rank along each split axis, the one whose cuts have the
+  /// smallest total area (a cut across a periodic axis counts once per rank, a bounded one once per
+  /// interior cut).
   static Layout autoLayout(const Domain& domain, int ranks, std::array<int, 3> cells = {0, 0, 0});
 
   const Domain& domain() const { return domain_; }

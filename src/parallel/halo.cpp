@@ -258,5 +258,6 @@ void fillGhosts(std::initializer_list<Field*> fields, const Decomposition& d) { 
 void fillGhosts(const std::vector<Field*>& fields, const Decomposition& d) { exchange(fields, d, false); }
 void sumGhosts(Field& f, const Decomposition& d) { exchange(std::vector<Field*>{&f}, d, true); }
 void sumGhosts(std::initializer_list<Field*> fields, const Decomposition& d) { exchange(std::vector<Field*>(fields), d, true); }
+void sumGhosts(const std::vector<Field*>& fields, const Decomposition& d) { exchange(fields, d, true); }
 
 }  // namespace gf::parallel

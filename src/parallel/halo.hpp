@@ -49,6 +49,7 @@ void fillGhosts(const std::vector<Field*>& fields, const Decomposition& d);
 void sumGhosts(Field& f, const Decomposition& d);
 /// sumGhosts for several fields at once.
 void sumGhosts(std::initializer_list<Field*> fields, const Decomposition& d);
+void sumGhosts(const std::vector<Field*>& fields, const Decomposition& d);
 
 /// The whole grid's field `whole` (its grid: the domain's; points and ghost layers as one rank
 /// holding the whole grid has them) assembled on rank 0 from every rank's `local` box: each point

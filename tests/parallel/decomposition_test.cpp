@@ -20,9 +20,11 @@ TEST(Decomposition, AutoLayoutCutsAcrossTheLongAxis) {
   EXPECT_EQ(Decomposition::autoLayout(box({0.03, 0.03, 0.12}), 4), (Layout{1, 1, 4}));
   // A cube on 8 ranks: 2 x 2 x 2 (area 3 faces) beats 8 slabs (7 faces).
   EXPECT_EQ(Decomposition::autoLayout(box({1, 1, 1}), 8), (Layout{2, 2, 2}));
-  // A grid of 4 cells along z cannot take 8 ranks there (ties: the first layout in the order of
-  // increasing px, then py).
-  EXPECT_EQ(Decomposition::autoLayout(box({1, 1, 10}), 8, {64, 64, 4}), (Layout{1, 2, 4}));
+  // A grid of 4 cells along z cannot be split there (each box needs kMinCellsPerRank = 3 cells
+  // along a split axis); the long z cuts are left for x and y (ties: the first layout in the order
+  // of increasing px, then py).
+  EXPECT_EQ(Decomposition::autoLayout(box({1, 1, 10}), 8, {64, 64, 4}), (Layout{2, 4, 1}));
+  EXPECT_EQ(Decomposition::autoLayout(box({1, 1, 10}), 2, {64, 64, 6}), (Layout{1, 1, 2}));  // 3 cells each
   // A periodic axis split in two has two cuts, a bounded one one: x (2 x 1.1) loses to z (1.2).
   EXPECT_EQ(Decomposition::autoLayout(box({1.2, 1, 1.1}, {true, false, false}), 2), (Layout{1, 1, 2}));
 }

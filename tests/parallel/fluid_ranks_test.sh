@@ -2,8 +2,8 @@
 # Fluid-only cases on several MPI ranks through `grainflow run`: the decomposed solver (hypre
 # pressure, ghost exchange across the cuts) against one rank (the multigrid pressure), monitors
 # within the pressure solvers' tolerance; the output binds one .vti piece per rank in a .pvti; a run
-# checkpointed on 2 ranks continues on 1 to the same monitors as an uninterrupted run; a coupled
-# case is refused on several ranks with a clear message.
+# checkpointed on 2 ranks continues on 1 to the same monitors as an uninterrupted run; a layout
+# too fine for the grid is refused with a clear message.
 #   usage: fluid_ranks_test.sh GRAINFLOW MPIEXEC SOURCE_DIR
 set -euo pipefail
 grainflow=$1 mpiexec=$2 src=$3
@@ -76,10 +76,14 @@ run 2 "$work/fluid_cavity.yaml" "$work/half" --end-time 0.5
 run 1 "$work/fluid_cavity.yaml" "$work/continued" --end-time 1.0 --restart "$work/half/checkpoint.bin"
 close "$work/fluid_cavity1" "$work/continued" 1e-10 "cavity: 2 ranks to t/2, then 1 rank, against 1 rank throughout"
 
-# 4. A coupled case is refused on several ranks before the run (exit 1, invalid case).
+# 4. A layout that leaves a rank fewer cells along a split axis than the ghost layers need is
+#    refused before the run (exit 1, invalid case), naming the key and the most ranks that fit.
 set +e
-message=$(run 2 "$src/cases/cfddem_batch_sedimentation.yaml" "$work/refused" 2>&1)
+sed 's/^  max: \[0.012, 0.012, 0.048\]$/  max: [0.012, 0.012, 0.048]\n  decomposition: [2, 1, 1]/' \
+  "$src/cases/cfddem_batch_sedimentation.yaml" >"$work/too_fine.yaml"
+message=$(run 2 "$work/too_fine.yaml" "$work/refused" 2>&1)
 code=$?
 set -e
-[[ $code -eq 1 && $message == *"coupled"* ]] || { echo "FAIL: coupled case on 2 ranks: exit $code: $message"; exit 1; }
-echo "ok: coupled case refused on 2 ranks: $(head -n1 <<<"$message")"
+[[ $code -eq 1 && $message == *"domain.decomposition"* && $message == *"at least 3 cells per rank"* ]] ||
+  { echo "FAIL: 2 ranks along 4 cells: exit $code: $message"; exit 1; }
+echo "ok: a layout too fine for the grid refused: $(head -n1 <<<"$message")"

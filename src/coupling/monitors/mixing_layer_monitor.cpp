@@ -31,6 +31,7 @@
 #include "core/monitor.hpp"
 #include "dem/system.hpp"
 #include "fluid/solver.hpp"
+#include "parallel/exchange.hpp"
 
 namespace gf::coupling {
 namespace {
@@ -77,9 +78,12 @@ class MixingLayerMonitor final : public Monitor {
             {"alpha", "-"},        {"alpha_bubble", "-"}, {"alpha_spike", "-"}};
   }
   std::vector<double> sample(const RunState& s) override {
-    if (!s.dem || !s.fluid || s.dem->particles().size() == 0) return {0, 0, 0, 0, 0, 0, 0};
-    const std::vector<double> phi = smoothed(layerSolidFraction(*s.fluid));
-    const CartesianGrid& g = s.fluid->grid();
+    if (!s.dem || !s.fluid) return {0, 0, 0, 0, 0, 0, 0};
+    const std::vector<double> layerFractions = layerSolidFraction(*s.fluid);  // (collective under MPI)
+    // (under MPI rank 0 holds every particle and writes the file; the others return zeros)
+    if (monitoredParticles(s).size() == 0) return {0, 0, 0, 0, 0, 0, 0};
+    const std::vector<double> phi = smoothed(layerFractions);
+    const CartesianGrid& g = s.fluid->globalGrid();
     const int layers = static_cast<int>(phi.size());
     if (!initialised_) initialise(phi, s);
     int lower = layers - 1;
@@ -130,11 +134,15 @@ class MixingLayerMonitor final : public Monitor {
   }
 
  private:
+  /// Mean solid fraction of each layer of the whole grid (this rank's cells summed into the layers
+  /// of its box, then over the ranks).
   std::vector<double> layerSolidFraction(const fluid::Solver& f) const {
     const CartesianGrid& g = f.grid();
+    const CartesianGrid& whole = f.globalGrid();
+    const int offset = f.decomposition().distributed() ? f.decomposition().cellOffset()[axis_] : 0;
     const Field& eps = f.couplingFields().voidFraction;
     const int a = axis_, b = (axis_ + 1) % 3, c = (axis_ + 2) % 3;
-    std::vector<double> phi(g.cells[a], 0.0);
+    std::vector<double> phi(whole.cells[a], 0.0);
     int idx[3];
     for (int l = 0; l < g.cells[a]; ++l) {
       double sum = 0.0;
@@ -145,8 +153,10 @@ class MixingLayerMonitor final : public Monitor {
           idx[c] = n;
           sum += 1.0 - eps(idx[0], idx[1], idx[2]);
         }
-      phi[l] = sum / (double(g.cells[b]) * g.cells[c]);
+      phi[static_cast<std::size_t>(offset + l)] = sum;
     }
+    if (f.decomposition().distributed()) phi = parallel::sumOverRanks(phi);
+    for (double& v : phi) v /= double(whole.cells[b]) * whole.cells[c];
     return phi;
   }
   std::vector<double> smoothed(const std::vector<double>& phi) const {
@@ -175,7 +185,7 @@ class MixingLayerMonitor final : public Monitor {
         bottomLayer_ = std::min(bottomLayer_, l);
       }
     phi0_ = count > 0 ? sum / count : 0.0;
-    const dem::ParticleSet& p = s.dem->particles();
+    const dem::ParticleSet& p = monitoredParticles(s);
     double mass = 0.0, volume = 0.0;
     for (std::size_t i = 0; i < p.size(); ++i) {
       mass += p.mass[i];

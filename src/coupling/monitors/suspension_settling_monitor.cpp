@@ -12,6 +12,7 @@
 #include "core/monitor.hpp"
 #include "dem/system.hpp"
 #include "fluid/solver.hpp"
+#include "parallel/exchange.hpp"
 
 namespace gf::coupling {
 namespace {
@@ -29,15 +30,26 @@ class SuspensionSettlingMonitor final : public Monitor {
             {"hindered_settling_velocity", "m/s"}};
   }
   std::vector<double> sample(const RunState& s) override {
-    if (!s.dem || !s.fluid || s.dem->particles().size() == 0) return {0.0, 0.0, 0.0, 0.0};
-    const dem::ParticleSet& p = s.dem->particles();
+    if (!s.dem || !s.fluid) return {0.0, 0.0, 0.0, 0.0};
+    const double flux = meanSuperficialVelocity(*s.fluid);  // (collective under MPI)
+    // (under MPI rank 0 holds every particle and writes the file; the others return zeros)
+    const dem::ParticleSet& p = monitoredParticles(s);
+    if (p.size() == 0) return {0.0, 0.0, 0.0, 0.0};
     double vsum = 0.0, volume = 0.0;
     for (std::size_t i = 0; i < p.size(); ++i) {
       vsum += p.velocity[i][axis_];
       volume += std::numbers::pi / 6.0 * 8.0 * p.radius[i] * p.radius[i] * p.radius[i];
     }
     const double vp = vsum / double(p.size());
-    const fluid::Solver& f = *s.fluid;
+    const CartesianGrid& g = s.fluid->globalGrid();
+    const double phi = volume / (g.cellVolume() * g.cells[0] * g.cells[1] * g.cells[2]);
+    const double frame = flux + phi * vp;
+    return {vp, flux, phi, -(vp - frame)};
+  }
+
+ private:
+  /// <eps u> along the axis over every cell of the grid (all ranks').
+  double meanSuperficialVelocity(const fluid::Solver& f) const {
     const CartesianGrid& g = f.grid();
     const Field& u = f.velocity(axis_);
     const Field& eps = f.couplingFields().voidFraction;
@@ -47,13 +59,11 @@ class SuspensionSettlingMonitor final : public Monitor {
       for (int j = 0; j < g.cells[1]; ++j)
         for (int i = 0; i < g.cells[0]; ++i)
           flux += eps(i, j, k) * 0.5 * (u(i, j, k) + u(i + da, j + db, k + dc));
-    flux /= double(g.cells[0]) * g.cells[1] * g.cells[2];
-    const double phi = volume / (g.cellVolume() * g.cells[0] * g.cells[1] * g.cells[2]);
-    const double frame = flux + phi * vp;
-    return {vp, flux, phi, -(vp - frame)};
+    if (f.decomposition().distributed()) flux = parallel::sumOverRanks(flux);
+    const CartesianGrid& whole = f.globalGrid();
+    return flux / (double(whole.cells[0]) * whole.cells[1] * whole.cells[2]);
   }
 
- private:
   int axis_ = 2;
 };
 
