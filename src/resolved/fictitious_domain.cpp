@@ -258,6 +258,11 @@ void FictitiousDomain::fluidStep(fluid::Solver& fluid, dem::ParticleSet& particl
 void FictitiousDomain::setPenalty(fluid::Solver& fluid, double diagonal) {
   CouplingFields& fields = fluid.couplingFields();
   Field& K = fields.dragCoefficient;
+  if (!penaltyCellsKnown_) {  // (first step, or after a restart: the fields came from the checkpoint)
+    K.fill(0.0);
+    for (int c = 0; c < 3; ++c) fields.particleVelocity[c].fill(0.0);
+    penaltyCellsKnown_ = true;
+  }
   for (std::size_t q : penaltyCells_) {  // the last step's cells back to K = 0
     K.data()[q] = 0.0;
     for (int c = 0; c < 3; ++c) fields.particleVelocity[c].data()[q] = 0.0;
@@ -311,6 +316,8 @@ void FictitiousDomain::save(BinaryWriter& out, const dem::ParticleSet& particles
 }
 
 void FictitiousDomain::load(BinaryReader& in, dem::ParticleSet& particles) {
+  penaltyCells_.clear();
+  penaltyCellsKnown_ = false;
   fixedKnown_ = in.get<std::uint8_t>() != 0;
   const auto n = in.get<std::uint64_t>();
   if (n != fixed_.size()) throw Error("checkpoint: resolved bodies differ from the case");

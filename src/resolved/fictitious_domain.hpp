@@ -91,6 +91,7 @@ class FictitiousDomain {
   bool implicit_ = true;                  // resolved.forcing
   bool viscousWarned_ = false;            // the explicit forcing's nu dt / h^2 warning, given once
   std::vector<std::size_t> penaltyCells_;  // cells with K > 0 (implicit forcing)
+  bool penaltyCellsKnown_ = false;         // penaltyCells_ lists every cell with K > 0
   std::vector<FixedBody> fixed_;
   // Per step (set by fluidStep before the fluid step, read by the hook).
   std::vector<Body> particleBodies_;

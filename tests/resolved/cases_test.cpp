@@ -82,6 +82,24 @@ TEST(ResolvedCases, SettlingSphereStartsDownwardSlowerThanWithoutFluidResistance
   EXPECT_NEAR(row[4], 0.0, 1e-9);  // (symmetric: no sideways drift)
 }
 
+TEST(ResolvedCases, RestartContinuesTheForcesBitForBit) {
+  // The fixed body's fluid momentum (rigid-body correction) and the Strouhal monitor's crossings are
+  // in the checkpoint: 10 steps in one go and 5 + 5 across a restart write the same last row.
+  TempDir dir;
+  const std::string file = source("cases/resolved_cylinder_re100.yaml");
+  const auto whole = grainflow("run " + file + " --quiet --threads 1 --end-time 0.02 --output " + dir.file("a"));
+  ASSERT_EQ(whole.exitCode, 0) << whole.output;
+  const auto first = grainflow("run " + file + " --quiet --threads 1 --end-time 0.01 --output " + dir.file("b"));
+  ASSERT_EQ(first.exitCode, 0) << first.output;
+  const auto second = grainflow("run " + file + " --quiet --threads 1 --end-time 0.02 --output " + dir.file("b") +
+                                " --restart " + dir.file("b/checkpoint.bin"));
+  ASSERT_EQ(second.exitCode, 0) << second.output;
+  const std::vector<double> a = lastRow(dir.file("a/cylinder_forces.csv")), b = lastRow(dir.file("b/cylinder_forces.csv"));
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_NEAR(a[0], 0.02, 1e-12);
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << i;
+}
+
 std::string settlingCaseWith(const std::string& from, const std::string& to) {
   std::string text = readAll(source("cases/resolved_settling_sphere.yaml"));
   const auto at = text.find(from);
