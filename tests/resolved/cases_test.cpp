@@ -33,7 +33,9 @@ std::vector<double> lastRow(const std::string& csv) {
 TEST(ResolvedCases, EveryResolvedCaseRunsShortened) {
   // Shortened to a few fluid steps each (end time per case), one thread.
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"resolved_cylinder_re100.yaml", "0.02"}, {"resolved_settling_sphere.yaml", "0.002"}};
+      {"resolved_cylinder_re100.yaml", "0.02"},
+      {"resolved_fixed_sphere.yaml", "0.015"},
+      {"resolved_settling_sphere.yaml", "0.002"}};
   int found = 0;
   for (const auto& entry : std::filesystem::directory_iterator(source("cases")))
     found += entry.path().filename().string().rfind("resolved_", 0) == 0;
