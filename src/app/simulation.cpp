@@ -187,9 +187,10 @@ Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptio
     if (!fluid_) root.fail("resolved", "a 'resolved' section without a 'fluid' section", "a 'fluid' section as well");
     if (coupler_ && !root.documenting())
       root.fail("resolved", "both a 'coupling' and a 'resolved' section", "one of them (unresolved or resolved CFD-DEM)");
-    if (decomposition_.distributed())
-      root.section({"domain"}).fail("decomposition", fmt::format("{} ranks for a resolved case", decomposition_.ranks()),
-                                    "one rank (run without mpirun): resolved cases run on one rank for now");
+    if (decomposition_.distributed() && root.has("insertion"))  // (fixed bodies alone run on several ranks)
+      root.section({"domain"}).fail("decomposition",
+                                    fmt::format("{} ranks for a resolved case with particles", decomposition_.ranks()),
+                                    "one rank (run without mpirun): resolved particles run on one rank for now");
     resolved_ = std::make_unique<resolved::FictitiousDomain>(root, *fluid_, dem_->particles(), domain_, settings_.gravity);
   }
 

@@ -201,10 +201,9 @@ void FictitiousDomain::fluidStep(fluid::Solver& fluid, dem::ParticleSet& particl
   for (std::size_t q = 0; q < owned.size(); ++q) inside[nf + q] = fluidMomentumInside(forcingBody(particleBodies_[q]), box_, u);
 
   if (distributed_) {
-    // Sums over the ranks' faces (a particle's faces may lie on several ranks). The particle sums
-    // are per rank-owned particle here: on several ranks each particle's faces on other ranks are
-    // missing (the app refuses resolved cases on several ranks until the particles' sums are keyed
-    // by id across ranks).
+    // The fixed bodies' sums over the ranks' cells and faces. (The particle sums are per rank-owned
+    // particle: a particle's cells on other ranks are missing, and the app refuses resolved
+    // particles on several ranks until the sums are keyed by id across the ranks.)
     std::vector<double> flat;
     flat.reserve(12 * nf);
     for (std::size_t b = 0; b < nf; ++b)

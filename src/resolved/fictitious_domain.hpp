@@ -18,8 +18,9 @@
 // Bodies: every DEM particle is a free resolved sphere; `resolved.bodies` adds fixed spheres and 2D
 // cylinders (axis z), optionally rotating at a prescribed angular velocity.
 //
-// Under MPI each rank forces the faces of its own box and the sums are added over the ranks
-// (parallel::sumOverRanks); the app refuses resolved cases on several ranks for now (docs/resolved.md).
+// Under MPI each rank forces the cells and faces of its own box and the fixed bodies' sums are added
+// over the ranks (parallel::sumOverRanks); the app refuses resolved particles on several ranks for now
+// (docs/resolved.md).
 #include <cstdint>
 #include <string>
 #include <vector>
