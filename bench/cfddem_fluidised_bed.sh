@@ -2,8 +2,10 @@
 # grainflow on the pseudo-2D bubbling fluidised bed (cases/cfddem_bubbling_fluidised_bed.yaml: 24,750
 # spheres, 2 x 30 x 90 cells, fluid step 2e-5 s, 3 DEM steps per fluid step), timed over DURATION
 # simulated seconds after a spin-up to SPINUP s (the inlet ramp ends at 0.3 s).
-#   bash bench/cfddem_fluidised_bed.sh [THREADS] [DURATION] [SPINUP] [START]
-#   (defaults 1, 1.0, 0.35, continue)
+#   bash bench/cfddem_fluidised_bed.sh [THREADS] [DURATION] [SPINUP] [START] [RANKS]
+#   (defaults 1, 1.0, 0.35, continue, 1)
+# RANKS > 1: the timed part on that many MPI ranks (mpirun, THREADS threads each; the pressure
+#   through hypre), its result line named bubbling_grainflow_mpi with ranks=RANKS.
 # START = continue: the spun-up bed goes on bubbling from t = SPINUP.
 # START = rest: the spun-up positions at rest, the fluid at rest and the full inlet velocity from
 #   t = 0 (no ramp): the start of bench/dpmfoam_goldschmidt.sh with the same positions, so that
@@ -21,6 +23,7 @@ threads=${1:-1}
 duration=${2:-1.0}
 spinup=${3:-0.35}
 start=${4:-continue}
+ranks=${5:-1}
 exe=${GRAINFLOW:-$here/build/grainflow}
 work=${BENCH_DIR:-/tmp/grainflow_bench_fluidised_bed}
 case_file=$here/cases/cfddem_bubbling_fluidised_bed.yaml
@@ -60,7 +63,7 @@ if [ ! -f "$spin_dir/checkpoint.bin" ] || [ "$spin_dir/checkpoint.bin" -ot "$exe
   OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive} "$exe" run "$work/spinup.yaml" --threads 2 --end-time "$spinup" \
     --output "$spin_dir" --overwrite --quiet
 fi
-out=$work/${start}_${threads}
+out=$work/${start}_${threads}_${ranks}
 if [ "$start" = continue ]; then
   derived_case 0 "$work/timed.yaml"
   begin=$spinup
@@ -72,16 +75,21 @@ else
   restart=()
 fi
 end=$(python3 -c "print($begin + $duration)")
-echo "grainflow: t = $begin ... $end s on $threads thread(s), start: $start"
+echo "grainflow: t = $begin ... $end s on $ranks rank(s) x $threads thread(s), start: $start"
+launcher=()
+if [ "$ranks" -gt 1 ]; then
+  export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+  launcher=(mpirun --oversubscribe -n "$ranks")
+fi
 # OpenMP wait policy: the default (threads spin briefly between parallel regions) on an idle machine;
 # set OMP_WAIT_POLICY=passive yourself on a machine busy with other work.
-"$exe" run "$work/timed.yaml" --threads "$threads" --end-time "$end" "${restart[@]}" \
+"${launcher[@]}" "$exe" run "$work/timed.yaml" --threads "$threads" --end-time "$end" "${restart[@]}" \
   --output "$out" --overwrite > "$out.log" 2>&1 || { cat "$out.log" >&2; exit 1; }
 sed -n '/^phase/,/^throughput/p' "$out.log"
-python3 - "$out.log" "$out/pressure_drop.csv" "$out/run.yaml" "$threads" "$begin" "$end" <<'PY'
+python3 - "$out.log" "$out/pressure_drop.csv" "$out/run.yaml" "$threads" "$begin" "$end" "$ranks" <<'PY'
 import csv, re, statistics, sys
 log_path, drop_path, resolved_path, threads = sys.argv[1:5]
-begin, end = float(sys.argv[5]), float(sys.argv[6])
+begin, end, ranks = float(sys.argv[5]), float(sys.argv[6]), int(sys.argv[7])
 log = open(log_path).read()
 total = re.search(r"^total\s+(\S+)", log, re.M)
 io = re.search(r"^I/O\s+(\S+)", log, re.M)
@@ -94,6 +102,7 @@ if not later: sys.exit(f"{drop_path}: no pressure-drop rows in the timed window"
 seconds = float(total.group(1)) - float(io.group(1))
 print(f"without I/O        {seconds / (end - begin):.4g} s wall per simulated second")
 print(f"pressure drop      {statistics.mean(later):.1f} Pa (mean of {len(later)} fluid steps after the first tenth)")
-print(f"result bubbling_grainflow threads={threads} s_per_s={seconds / (end - begin):.6g} "
+name = "bubbling_grainflow" if ranks == 1 else f"bubbling_grainflow_mpi ranks={ranks}"
+print(f"result {name} threads={threads if ranks == 1 else ranks} s_per_s={seconds / (end - begin):.6g} "
       f"particles={particles.group(1)} substeps={substeps.group(1) if substeps else 'nan'} pressure_csv={drop_path}")
 PY

@@ -3,8 +3,9 @@
 #   - DEM settled bed (15,000 spheres): LIGGGHTS 3.8 on 1 process and 2 MPI ranks, against
 #     grainflow's BM_DemSettledBed on 1 and 2 threads (bench/liggghts_settled_bed.sh);
 #   - coupled bubbling bed (24,750 spheres): DPMFoam on its Goldschmidt tutorial, 1 process and 2
-#     ranks, against cases/cfddem_bubbling_fluidised_bed.yaml on 1 and 2 threads, both from the same
-#     particle positions at rest (bench/dpmfoam_goldschmidt.sh, bench/cfddem_fluidised_bed.sh);
+#     ranks, against cases/cfddem_bubbling_fluidised_bed.yaml on 1 and 2 threads and on 2 MPI ranks,
+#     all from the same particle positions at rest (bench/dpmfoam_goldschmidt.sh,
+#     bench/cfddem_fluidised_bed.sh);
 #   - lid-driven cube 64^3 at Re 100: icoFoam (PISO, GAMG) against grainflow's fluid, one process /
 #     one thread each (bench/icofoam_cube.sh).
 # In each pair the two codes alternate. It prints one table (markdown): per problem and process
@@ -138,6 +139,11 @@ if wanted bubbling_bed; then
       note "bubbling bed, round $round: grainflow on $p thread(s), $grainflow_window s from rest$spin ..."
       BENCH_DIR=$work/bubbling_bed run_logged "$work/bubbling_grainflow_$p.log" \
         bash "$here/bench/cfddem_fluidised_bed.sh" "$p" "$grainflow_window" "$spinup" rest
+      if [ "$p" -gt 1 ]; then
+        note "bubbling bed, round $round: grainflow on $p MPI ranks, $grainflow_window s from rest ..."
+        BENCH_DIR=$work/bubbling_bed run_logged "$work/bubbling_grainflow_mpi_$p.log" \
+          bash "$here/bench/cfddem_fluidised_bed.sh" 1 "$grainflow_window" "$spinup" rest "$p"
+      fi
       note "bubbling bed, round $round: DPMFoam on $p process(es), $peer_window s from the same positions ..."
       BENCH_DIR=$work/dpmfoam_$p run_logged "$work/bubbling_dpmfoam_$p.log" \
         bash "$here/bench/dpmfoam_goldschmidt.sh" "$peer_window" "$positions" "$p"
@@ -206,6 +212,14 @@ for procs in ("1", "2"):
     ratio = float(best_peer["s_per_s"]) / float(best_ours["s_per_s"])
     print(f"| coupled bubbling bed, 24,750 spheres (s wall per simulated s) | {procs} | DPMFoam (OpenFOAM v1912) | "
           f"{float(best_peer['s_per_s']):.0f} | {float(best_ours['s_per_s']):.0f} | {ratio:.1f} | >= 50 | "
+          f"{'yes' if ratio >= 50 else 'no'} |")
+mpi_peer, mpi_ours = results.get(("bubbling_dpmfoam", "2"), []), results.get(("bubbling_grainflow_mpi", "2"), [])
+if mpi_peer and mpi_ours:
+    best_peer = min(float(r["s_per_s"]) for r in mpi_peer)
+    best_ours = min(float(r["s_per_s"]) for r in mpi_ours)
+    ratio = best_peer / best_ours
+    print(f"| coupled bubbling bed, 24,750 spheres, grainflow on MPI ranks (s wall per simulated s) | 2 | "
+          f"DPMFoam (OpenFOAM v1912) | {best_peer:.0f} | {best_ours:.0f} | {ratio:.1f} | >= 50 | "
           f"{'yes' if ratio >= 50 else 'no'} |")
 for r in results.get(("cube", "1"), []):
     ratio = float(r["peer"]) / float(r["grainflow"])

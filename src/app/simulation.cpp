@@ -1,10 +1,12 @@
 #include "app/simulation.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <numeric>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -321,6 +323,13 @@ void Simulation::prepare() {
 
 void Simulation::writeCheckpoint(const std::string& path) const {
   BinaryWriter out;
+  saveState(out);
+  // (the state is gathered on rank 0, which writes the one file; the others wait for it)
+  if (rootRank()) io::writeCheckpoint(path, fingerprint_, out);
+  synchroniseRanks();
+}
+
+void Simulation::saveState(BinaryWriter& out) const {
   out.put(step_);
   out.put(outputCount_);
   out.put(nextOutputTime_);
@@ -330,20 +339,31 @@ void Simulation::writeCheckpoint(const std::string& path) const {
   if (coupler_) coupler_->save(out, dem_->particles());
   if (resolved_) resolved_->save(out, dem_->particles());
   for (const MonitorSlot& m : monitors_) m.monitor->save(out);
-  // (the state is gathered on rank 0, which writes the one file; the others wait for it)
-  if (rootRank()) io::writeCheckpoint(path, fingerprint_, out);
-  synchroniseRanks();
 }
 
 void Simulation::restoreCheckpoint(const std::string& path) {
   const std::vector<char> payload = io::readCheckpoint(path, fingerprint_);
   BinaryReader in(payload.data(), payload.size());
+  loadState(in, "checkpoint '" + path + "'");
+  if (coupler_) checkCouplingInterval();
+  if (rootRank()) {
+    particleSeries_.load();
+    particleSeries_.truncateAfter(time());
+    fluidSeries_.load();
+    fluidSeries_.truncateAfter(time());
+    for (MonitorSlot& m : monitors_) m.series.resumeFrom(time());
+  }
+  synchroniseRanks();
+  lastCheckpoint_ = path;
+}
+
+void Simulation::loadState(BinaryReader& in, const std::string& source) {
   step_ = in.get<long long>();
   outputCount_ = in.get<long long>();
   nextOutputTime_ = in.get<double>();
   nextMonitorTime_ = in.getVector<double>();
   if (nextMonitorTime_.size() != monitors_.size())
-    throw CheckpointError(fmt::format("checkpoint '{}' has {} monitors, the case has {}", path, nextMonitorTime_.size(),
+    throw CheckpointError(fmt::format("{} has {} monitors, the case has {}", source, nextMonitorTime_.size(),
                                       monitors_.size()));
   dem_->load(in);
   if (fluid_) fluid_->load(in);
@@ -355,20 +375,141 @@ void Simulation::restoreCheckpoint(const std::string& path) {
     coupler_->computeVoidFraction(dem_->particles(), fields);
     fields.voidFraction = eps;
     fields.voidFractionOld = epsOld;
-    checkCouplingInterval();
   }
   if (resolved_) resolved_->load(in, dem_->particles());
   for (MonitorSlot& m : monitors_) m.monitor->load(in);
-  if (!in.atEnd()) throw CheckpointError(fmt::format("checkpoint '{}' has trailing data (written by another case?)", path));
-  if (rootRank()) {
-    particleSeries_.load();
-    particleSeries_.truncateAfter(time());
-    fluidSeries_.load();
-    fluidSeries_.truncateAfter(time());
-    for (MonitorSlot& m : monitors_) m.series.resumeFrom(time());
+  if (!in.atEnd()) throw CheckpointError(fmt::format("{} has trailing data (written by another case?)", source));
+}
+
+// ------------------------------------------------------------------ load balancing (coupled cases)
+
+void Simulation::rebalanceIfDue() {
+  // (coupled cases under MPI on the Cartesian layout; DEM-only cases re-cut their own boxes, dem::System)
+  if (!coupler_ || !decomposition_.distributed() || !decomposition_.gridded()) return;
+  const dem::BalanceSettings& b = dem_->balanceSettings();
+  if (b.interval <= 0 || step_ / b.interval <= balanceChecks_) return;
+  balanceChecks_ = step_ / b.interval;
+  // The work of a box: its cells at the measured fluid time per cell plus its particles at the
+  // measured particle time (DEM and coupling) per particle, both summed over the ranks since the
+  // start (waits in collectives and ghost exchanges excluded where the timers separate them).
+  const fluid::Solver& f = *fluid_;
+  const CartesianGrid& whole = f.globalGrid();
+  const PhaseTimers& d = dem_->timers();
+  const double particleSeconds = d.seconds(Phase::NeighbourSearch) + d.seconds(Phase::Contacts) +
+                                 d.seconds(Phase::Integration) + appTimers_.seconds(Phase::Coupling);
+  const double fluidSeconds = fluid_->timers().seconds(Phase::Fluid);
+  // per axis, the owned particles in each global cell plane (one allreduce for the three axes)
+  std::vector<double> local(static_cast<std::size_t>(whole.cells[0] + whole.cells[1] + whole.cells[2]) + 4, 0.0);
+  const dem::ParticleSet& p = dem_->particles();
+  long long owned = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.isGhost(i)) continue;
+    ++owned;
+    std::size_t base = 0;
+    for (int a = 0; a < 3; ++a) {
+      const int plane = std::clamp(static_cast<int>(std::floor((p.position[i][a] - whole.origin[a]) / whole.spacing[a])),
+                                   0, whole.cells[a] - 1);
+      local[base + static_cast<std::size_t>(plane)] += 1.0;
+      base += static_cast<std::size_t>(whole.cells[a]);
+    }
   }
-  synchroniseRanks();
-  lastCheckpoint_ = path;
+  const std::size_t extra = local.size() - 4;
+  local[extra] = particleSeconds;
+  local[extra + 1] = fluidSeconds;
+  local[extra + 2] = static_cast<double>(f.grid().interiorCellCount());
+  local[extra + 3] = static_cast<double>(owned);
+  const std::vector<double> sums = parallel::sumOverRanks(local);
+  const double particles = sums[extra + 3], cells = sums[extra + 2];
+  const double perParticle = particles > 0.0 ? sums[extra] / particles : 0.0;
+  const double perCell = cells > 0.0 ? sums[extra + 1] / cells : 0.0;
+  const std::vector<double> work =
+      parallel::allgather(perCell * local[extra + 2] + perParticle * local[extra + 3]);
+  const double mean = std::accumulate(work.begin(), work.end(), 0.0) / static_cast<double>(work.size());
+  const double before = mean > 0.0 ? *std::max_element(work.begin(), work.end()) / mean : 1.0;
+  if (!(before > b.threshold)) return;
+  // New cuts per split axis: the planes' work (their cells and particles) in even shares.
+  std::array<std::vector<int>, 3> cuts = decomposition_.cellCuts();
+  std::size_t base = 0;
+  for (int a = 0; a < 3; ++a) {
+    const int n = whole.cells[a];
+    if (decomposition_.layout()[a] > 1) {
+      const double cellsPerPlane = cells / n;
+      std::vector<double> cost(static_cast<std::size_t>(n));
+      for (int c = 0; c < n; ++c) cost[static_cast<std::size_t>(c)] = perCell * cellsPerPlane + perParticle * sums[base + static_cast<std::size_t>(c)];
+      cuts[static_cast<std::size_t>(a)] =
+          parallel::Decomposition::balancedCuts(cost, decomposition_.layout()[a], parallel::kMinCellsPerRank);
+    }
+    base += static_cast<std::size_t>(n);
+  }
+  // With one split axis the work of the new boxes is known from the planes: a re-cut that would
+  // not lower the imbalance by a per cent (whole planes are too coarse) is not made.
+  int splitAxes = 0, axis = 0;
+  for (int a = 0; a < 3; ++a)
+    if (decomposition_.layout()[a] > 1) ++splitAxes, axis = a;
+  double after = 0.0;
+  if (splitAxes == 1) {
+    std::size_t first = 0;
+    for (int a = 0; a < axis; ++a) first += static_cast<std::size_t>(whole.cells[a]);
+    const std::vector<int>& c = cuts[static_cast<std::size_t>(axis)];
+    const double cellsPerPlane = cells / whole.cells[axis];
+    double largest = 0.0, total = 0.0;
+    for (std::size_t k = 0; k + 1 < c.size(); ++k) {
+      double part = 0.0;
+      for (int plane = c[k]; plane < c[k + 1]; ++plane)
+        part += perCell * cellsPerPlane + perParticle * sums[first + static_cast<std::size_t>(plane)];
+      largest = std::max(largest, part);
+      total += part;
+    }
+    after = largest / (total / static_cast<double>(c.size() - 1));
+  }
+  if (cuts == decomposition_.cellCuts() || (splitAxes == 1 && after > 0.99 * before)) {
+    if (rootRank())
+      spdlog::info("parallel: imbalance {:.3f} at t = {:g} s, boxes kept (whole cell planes allow no better)", before,
+                   time());
+    return;
+  }
+  long long moved = 0;  // cells whose rank changes
+  const parallel::Decomposition next = decomposition_.withCellCuts(cuts);
+  for (int r = 0; r < decomposition_.ranks(); ++r) {
+    const auto o0 = decomposition_.cellOffset(r), n0 = decomposition_.cellCount(r);
+    const auto o1 = next.cellOffset(r), n1 = next.cellCount(r);
+    long long kept = 1;
+    for (int a = 0; a < 3; ++a) kept *= std::max(0, std::min(o0[a] + n0[a], o1[a] + n1[a]) - std::max(o0[a], o1[a]));
+    moved += static_cast<long long>(n0[0]) * n0[1] * n0[2] - kept;
+  }
+  rebalanceTo(next);
+  if (rootRank()) {
+    std::string described;
+    for (int a = 0; a < 3; ++a)
+      if (next.layout()[a] > 1) described += fmt::format(" {}: {}", "xyz"[a], fmt::join(next.cellCuts()[static_cast<std::size_t>(a)], " "));
+    spdlog::info("parallel: imbalance {:.3f} at t = {:g} s: boxes re-cut along the cells ({:.0f} % of the cells moved; "
+                 "cell cuts{})",
+                 before, time(), 100.0 * static_cast<double>(moved) / cells, described);
+  }
+}
+
+void Simulation::rebalanceTo(const parallel::Decomposition& next) {
+  BinaryWriter out;
+  saveState(out);  // (gathered into rank 0's writer)
+  const parallel::Bytes state = parallel::broadcastFromRoot(parallel::Bytes(out.bytes().begin(), out.bytes().end()));
+  const PhaseTimers demTimers = dem_->timers(), fluidTimers = fluid_->timers();
+  decomposition_ = next;
+  // the DEM, the fluid and the coupling built for the new boxes, as for a restart
+  Params root = Params::loadFile(caseFile_);
+  dem_ = std::make_unique<dem::System>(root, domain_, settings_.gravity, dem::InitialParticles::FromCheckpoint,
+                                       decomposition_);
+  fluid_ = std::make_unique<fluid::Solver>(root, domain_, settings_.gravity, decomposition_);
+  const auto model =
+      fluid_->model() == fluid::MomentumModel::A ? coupling::ExchangeModel::A : coupling::ExchangeModel::B;
+  coupler_ = std::make_unique<coupling::Coupler>(root, fluid_->grid(), domain_.periodic, settings_.gravity, model,
+                                                 &fluid_->decomposition());
+  coupler_->setCoarseGrainingByMaterial(dem_->coarseGrainingByMaterial());
+  for (int ph = 0; ph < static_cast<int>(Phase::Count); ++ph) {  // (the run's timing table goes on)
+    dem_->timers().add(static_cast<Phase>(ph), demTimers.seconds(static_cast<Phase>(ph)));
+    fluid_->timers().add(static_cast<Phase>(ph), fluidTimers.seconds(static_cast<Phase>(ph)));
+  }
+  BinaryReader in(state.data(), state.size());
+  loadState(in, "the state moved to the new boxes");
 }
 
 // ------------------------------------------------------------------ the time loop
@@ -572,6 +713,7 @@ RunStatus Simulation::run() {
   while (step_ < totalSteps) {
     advance();
     if (step_ % settings_.healthCheckInterval == 0) checkHealth();
+    rebalanceIfDue();
     sampleMonitors(false);
     if (settings_.outputInterval > 0.0 && time() + outputTolerance >= nextOutputTime_) writeOutput();
     if (nextCheckpointStep > 0 && step_ >= nextCheckpointStep) {

@@ -116,6 +116,19 @@ class Simulation {
   void initialiseCoupling();
   /// Under MPI: all ranks wait here (directory creation, file writes by rank 0).
   void synchroniseRanks() const;
+  /// The state a checkpoint holds (collective under MPI: gathered into rank 0's writer), and its
+  /// restore on any layout; `source` names the state in errors.
+  void saveState(BinaryWriter& out) const;
+  void loadState(BinaryReader& in, const std::string& source);
+  /// Coupled cases under MPI (parallel.rebalance_*): at the first coupling step after every
+  /// rebalance_interval DEM steps, the work of each rank's box (its cells and particles, weighted
+  /// by the measured time per cell and per particle) is compared; above rebalance_threshold x the
+  /// mean, the cell cuts of each split axis move to even out the work, and the state moves to the
+  /// new boxes (rebalanceTo).
+  void rebalanceIfDue();
+  /// The run's state carried to the boxes of `next`: saved, sent to every rank, and restored on a
+  /// DEM, fluid and coupling built anew for the new boxes (what a restart on another layout does).
+  void rebalanceTo(const parallel::Decomposition& next);
 
   CaseSettings settings_;
   RunOptions options_;
@@ -140,6 +153,7 @@ class Simulation {
   io::PvdCollection particleSeries_;
   io::PvdCollection fluidSeries_;
   PhaseTimers appTimers_;
+  long long balanceChecks_ = 0;  // rebalanceIfDue: the last interval checked (step_ / rebalance_interval)
 };
 
 /// Case fingerprint: hash of every resolved key except those allowed to change on restart.

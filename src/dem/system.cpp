@@ -43,10 +43,12 @@ System::System(Params& root, const Domain& domain, const Vec3& gravity, InitialP
       {"reorder_interval", "-", "Morton (space-filling curve) reordering every this many rebuilds (0: never)",
        Range::atLeast(0)},
       20));
-  Params par = root.section({"parallel", "-", "MPI runs: load balancing of the particles among the ranks"});
+  Params par = root.section({"parallel", "-", "MPI runs: load balancing among the ranks"});
   balance_.threshold = par.real({"rebalance_threshold", "-",
-                                 "re-cut the ranks' boxes (recursive coordinate bisection) when the largest number of "
-                                 "particles a rank owns exceeds this times the mean (DEM-only cases)",
+                                 "re-cut the ranks' boxes when the largest load of a rank exceeds this times the mean: "
+                                 "DEM-only cases, the particles it owns (recursive coordinate bisection by Zoltan); "
+                                 "cases with a fluid, the measured work of its cells and particles (the cell cuts "
+                                 "of each split axis moved, docs/parallel.md)",
                                  Range::atLeast(1.0)},
                                 1.2);
   balance_.interval = par.integer(
@@ -55,7 +57,7 @@ System::System(Params& root, const Domain& domain, const Vec3& gravity, InitialP
       1000);
   balance_.byPairs = par.choice({"rebalance_weight", "-",
                                  "load of a particle: particles (1 each) or pairs (1 + its neighbour-list pairs, "
-                                 "for beds with dense and dilute parts)"},
+                                 "for beds with dense and dilute parts; DEM-only cases)"},
                                 {"particles", "pairs"}, "particles") == "pairs";
   if (root.documenting()) return;
   updateWalls();

@@ -144,6 +144,8 @@ class System {
   /// Whether the particles are split among MPI ranks (ghosts present, sums reduced over ranks).
   bool distributed() const { return distributed_; }
   const parallel::Decomposition& decomposition() const { return decomposition_; }
+  /// parallel.rebalance_*: when to check the balance among the ranks and the threshold.
+  const BalanceSettings& balanceSettings() const { return balance_; }
   /// Particles owned by all ranks together (collective under MPI).
   long long globalParticleCount() const;
   /// The particles of every rank, sorted by id, on rank 0 (empty elsewhere; this rank's own
@@ -202,7 +204,6 @@ class System {
   double ghostReach_ = 0.0;
   BalanceSettings balance_;
   long long balanceChecks_ = -1;  // the last interval (steps_ / balance_.interval) checked
-  bool balanceNoticeGiven_ = false;
   // Particles that arrived at the last migration (per index, 1 = arrived) and the contact
   // histories they brought: set on their list entries after the build.
   std::vector<std::uint8_t> arrived_;

@@ -29,13 +29,8 @@ bool System::rebalanceIfDue(const std::vector<std::uint32_t>& order, double reac
   if (due <= balanceChecks_) return false;
   balanceChecks_ = due;
   const bool root = decomposition_.rank() == 0;
-  if (decomposition_.gridded()) {
-    if (root && !balanceNoticeGiven_)
-      spdlog::info("parallel: no rebalancing in a case with a fluid (the grid keeps its layout {})",
-                   decomposition_.describe());
-    balanceNoticeGiven_ = true;
-    return false;
-  }
+  // A case with a fluid: its boxes are the grid's, re-cut with the cells (Simulation::rebalanceIfDue).
+  if (decomposition_.gridded()) return false;
   // A case layout narrower than the reach is refused after the first build (checkBoxesHoldTheReach).
   if (!decomposition_.explicitBoxes() && decomposition_.smallestBoxWidth() < reach) return false;
   // The particles this rank owns at this build (ghosts are sent again after the migration).

@@ -319,4 +319,45 @@ std::string Decomposition::describe() const {
   return fmt::format("{} x {} x {}", layout_[0], layout_[1], layout_[2]);
 }
 
+Decomposition Decomposition::withCellCuts(const std::array<std::vector<int>, 3>& cuts) const {
+  if (explicit_ || !gridded()) throw std::invalid_argument("decomposition: cell cuts need the Cartesian form with a grid");
+  Decomposition d = *this;
+  for (int a = 0; a < 3; ++a) {
+    const std::vector<int>& c = cuts[static_cast<std::size_t>(a)];
+    const std::vector<int>& old = cellCut_[static_cast<std::size_t>(a)];
+    if (c.size() != old.size() || c.front() != 0 || c.back() != old.back() || !std::is_sorted(c.begin(), c.end()) ||
+        std::adjacent_find(c.begin(), c.end()) != c.end())
+      throw std::invalid_argument(fmt::format("decomposition: {} cell cuts along {} do not cut {} cells into {} boxes",
+                                              c.size(), "xyz"[a], old.back(), layout_[a]));
+    const double h = (domain_.max[a] - domain_.min[a]) / old.back();
+    d.cellCut_[static_cast<std::size_t>(a)] = c;
+    for (std::size_t k = 0; k < c.size(); ++k)
+      d.cut_[static_cast<std::size_t>(a)][k] = k + 1 == c.size() ? domain_.max[a] : domain_.min[a] + c[k] * h;
+  }
+  return d;
+}
+
+std::vector<int> Decomposition::balancedCuts(const std::vector<double>& planeCost, int parts, int minCells) {
+  const int n = static_cast<int>(planeCost.size());
+  if (parts < 1 || n < parts * minCells)
+    throw std::invalid_argument(fmt::format("decomposition: {} planes cannot be cut into {} parts of {} or more",
+                                            n, parts, minCells));
+  std::vector<double> running(static_cast<std::size_t>(n) + 1, 0.0);  // cost of planes [0, i)
+  for (int i = 0; i < n; ++i) running[static_cast<std::size_t>(i) + 1] = running[static_cast<std::size_t>(i)] + planeCost[static_cast<std::size_t>(i)];
+  const double total = running.back();
+  std::vector<int> cuts{0};
+  for (int k = 1; k < parts; ++k) {
+    // within the planes that leave every part its minimum
+    const int lo = cuts.back() + minCells, hi = n - (parts - k) * minCells;
+    const double target = total * k / parts;
+    int best = lo;
+    for (int c = lo; c <= hi; ++c)
+      if (std::abs(running[static_cast<std::size_t>(c)] - target) < std::abs(running[static_cast<std::size_t>(best)] - target))
+        best = c;
+    cuts.push_back(best);
+  }
+  cuts.push_back(n);
+  return cuts;
+}
+
 }  // namespace gf::parallel

@@ -118,6 +118,18 @@ class Decomposition {
   /// boxes: along every axis that a box does not span whole.
   double smallestBoxWidth() const;
 
+  /// With a grid (Cartesian form): the same layout and rank with the cell cuts `cuts` (per axis
+  /// layout[a] + 1 ascending cell indices from 0 to the axis's cells; the boxes between them, the
+  /// neighbours unchanged). Throws std::invalid_argument for cuts that do not fit the layout.
+  Decomposition withCellCuts(const std::array<std::vector<int>, 3>& cuts) const;
+  /// The cell cuts of each axis (Cartesian form with a grid).
+  const std::array<std::vector<int>, 3>& cellCuts() const { return cellCut_; }
+  /// Cuts of `planeCost.size()` cell planes into `parts` consecutive parts of at least `minCells`
+  /// planes each whose costs are as even as the planes allow: cut k at the plane boundary where the
+  /// running cost comes closest to k / parts of the total (0 and the plane count at the ends).
+  /// Pure; the same result on every rank for the same costs.
+  static std::vector<int> balancedCuts(const std::vector<double>& planeCost, int parts, int minCells);
+
   /// "2 x 1 x 1" for messages; "4 boxes" for explicit boxes.
   std::string describe() const;
 

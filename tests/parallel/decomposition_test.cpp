@@ -87,5 +87,35 @@ TEST(Decomposition, RefusesLayoutsThatDoNotFit) {
   EXPECT_THROW(Decomposition::autoLayout(d, 7, {2, 2, 1}), std::invalid_argument);
 }
 
+
+TEST(Decomposition, BalancedCutsEvenOutThePlanesCosts) {
+  // 12 planes, the first 4 twice as costly: total 4 x 3 + 8 x 1.5 = 24, half after plane 4.
+  std::vector<double> cost(12, 1.5);
+  for (int i = 0; i < 4; ++i) cost[static_cast<std::size_t>(i)] = 3.0;
+  EXPECT_EQ(Decomposition::balancedCuts(cost, 2, 3), (std::vector<int>{0, 4, 12}));
+  // uniform planes: even parts
+  EXPECT_EQ(Decomposition::balancedCuts(std::vector<double>(12, 1.0), 3, 3), (std::vector<int>{0, 4, 8, 12}));
+  // every part keeps its minimum even where the cost would put the cut nearer the end
+  std::vector<double> front(12, 0.0);
+  front[0] = 100.0;
+  EXPECT_EQ(Decomposition::balancedCuts(front, 2, 3), (std::vector<int>{0, 3, 12}));
+  EXPECT_THROW(Decomposition::balancedCuts(std::vector<double>(5, 1.0), 2, 3), std::invalid_argument);
+}
+
+TEST(Decomposition, WithCellCutsMovesTheBoxesAndKeepsTheNeighbours) {
+  const Domain d = box({1.0, 1.0, 2.4});
+  const Decomposition even(d, {1, 1, 2}, 2, 1, {4, 4, 24});
+  EXPECT_EQ(even.cellOffset()[2], 12);
+  const Decomposition moved = even.withCellCuts({std::vector<int>{0, 4}, std::vector<int>{0, 4}, std::vector<int>{0, 6, 24}});
+  EXPECT_EQ(moved.cellOffset()[2], 6);
+  EXPECT_EQ(moved.cellCount()[2], 18);
+  EXPECT_NEAR(moved.lower()[2], 0.6, 1e-12);
+  EXPECT_EQ(moved.ownerOf({0.5, 0.5, 0.5}), 0);
+  EXPECT_EQ(moved.ownerOf({0.5, 0.5, 0.7}), 1);
+  EXPECT_EQ(moved.neighbourRanks(), even.neighbourRanks());
+  EXPECT_THROW(even.withCellCuts({std::vector<int>{0, 4}, std::vector<int>{0, 4}, std::vector<int>{0, 30, 24}}),
+               std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace gf::parallel
