@@ -35,6 +35,7 @@ TEST(ResolvedCases, EveryResolvedCaseRunsShortened) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"resolved_cylinder_re100.yaml", "0.02"},
       {"resolved_fixed_sphere.yaml", "0.015"},
+      {"resolved_rotating_sphere.yaml", "0.015"},
       {"resolved_settling_sphere.yaml", "0.002"}};
   int found = 0;
   for (const auto& entry : std::filesystem::directory_iterator(source("cases")))
