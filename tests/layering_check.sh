@@ -17,6 +17,7 @@ declare -A forbidden=(
   [coupling]="app"
   [parallel]="dem fluid coupling app"
   [resolved]="coupling app"
+  [vof]="dem coupling app"
 )
 
 violations=0
@@ -41,4 +42,4 @@ if ((violations > 0)); then
        "src/io, or let src/coupling or src/app bring the parts together" >&2
   exit 1
 fi
-echo "layering_check: src/core, src/io, src/dem, src/fluid and src/coupling include only what their layer may"
+echo "layering_check: src/core, src/io, src/dem, src/fluid, src/coupling and src/vof include only what their layer may"

@@ -1,0 +1,347 @@
+// Flux-corrected transport of the phase fractions (vof/vof.hpp, docs/vof.md).
+//
+// Seed 002 eq. 2 (line 316): d(eps alpha_i)/dt + div(eps alpha_i u) - div(u_c alpha_i (1 - alpha_i)) = 0.
+// With phi = eps_f u_f the superficial face velocity, one step of length dt is, per cell,
+//   (eps alpha_i)* = eps alpha_i - dt div F_i,  F_i = phi alpha_i,up + C_f A_i   (Zalesak 1979)
+// where A_i = phi 0.5 (1 - c)(alpha_down - alpha_up) + compression is the correction beyond
+// upwind, C_f in [0, 1] Zalesak's face factor, and the corrections of the phases are then made to
+// sum to zero on every face (MULES::limitSum). Finally alpha_i = (eps alpha_i)* / sum_j (eps alpha_j)*.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+
+#include "core/parallel.hpp"
+#include "vof/kernels.hpp"
+#include "vof/vof.hpp"
+
+namespace gf::vof {
+
+namespace {
+
+/// body(i, j, k) over the cells [lo, hi) per axis, threaded over the (j, k) lines.
+template <class Body>
+void forCells(std::array<int, 3> lo, std::array<int, 3> hi, Body&& body) {
+  const int nj = hi[1] - lo[1], nk = hi[2] - lo[2];
+  if (nj <= 0 || nk <= 0 || hi[0] <= lo[0]) return;
+  gf::parallelFor(static_cast<std::int64_t>(nj) * nk, [&](std::int64_t l) {
+    const int j = lo[1] + static_cast<int>(l % nj), k = lo[2] + static_cast<int>(l / nj);
+    for (int i = lo[0]; i < hi[0]; ++i) body(i, j, k);
+  });
+}
+
+double spacing(const CartesianGrid& g, int a) { return a == 0 ? g.spacing.x : (a == 1 ? g.spacing.y : g.spacing.z); }
+
+/// (i, j, k) moved by d along axis a.
+std::array<int, 3> shifted(int i, int j, int k, int a, int d) {
+  std::array<int, 3> c{i, j, k};
+  c[static_cast<std::size_t>(a)] += d;
+  return c;
+}
+
+double at(const Field& f, const std::array<int, 3>& c) { return f(c[0], c[1], c[2]); }
+
+}  // namespace
+
+void fillCellGhosts(Field& f, const Sides& sides) {
+  const auto& pts = f.points();
+  const int g = f.grid().ghosts;
+  auto& d = f.data();
+  for (int a = 0; a < 3; ++a) {
+    const int n = pts[static_cast<std::size_t>(a)];
+    const std::ptrdiff_t s = f.stride(a);
+    const int b = (a + 1) % 3, c = (a + 2) % 3;  // the other two axes, whole extent with ghosts
+    const int nb = pts[static_cast<std::size_t>(b)], nc = pts[static_cast<std::size_t>(c)];
+    for (int side = 0; side < 2; ++side) {
+      const SideType t = sides.at(a, side);
+      if (t == SideType::Shared) continue;
+      for (int q = -g; q < nc + g; ++q)
+        for (int p = -g; p < nb + g; ++p) {
+          std::array<int, 3> base{0, 0, 0};
+          base[static_cast<std::size_t>(b)] = p;
+          base[static_cast<std::size_t>(c)] = q;
+          const auto origin = static_cast<std::ptrdiff_t>(f.index(base[0], base[1], base[2]));  // index along a = 0
+          for (int l = 1; l <= g; ++l) {
+            // ghost index along a, and the interior point it copies
+            const int ghost = side == 0 ? -l : n - 1 + l;
+            int from;
+            if (t == SideType::Periodic) from = side == 0 ? n - l : l - 1;
+            else from = side == 0 ? std::min(l - 1, n - 1) : std::max(n - l, 0);  // mirror: zero normal gradient
+            d[static_cast<std::size_t>(origin + ghost * s)] = d[static_cast<std::size_t>(origin + from * s)];
+          }
+        }
+    }
+  }
+}
+
+GhostFill singleBoxFill(const Sides& sides) {
+  return [sides](const std::vector<Field*>& fields) {
+    for (Field* f : fields) fillCellGhosts(*f, sides);
+  };
+}
+
+PhaseTransport::PhaseTransport(const CartesianGrid& box, int phases) : box_(box), phases_(phases) {
+  if (phases < 2) throw std::invalid_argument("vof: at least two phases");
+  if (box.ghosts < 2) throw std::invalid_argument("vof: the transport needs two ghost layers");
+  epsOld_ = Field(box);
+  epsStar_ = Field(box);
+  for (int i = 0; i < phases; ++i) {
+    for (int a = 0; a < 3; ++a) {
+      const auto st = static_cast<Staggering>(a + 1);
+      low_.emplace_back(box, st);
+      anti_.emplace_back(box, st);
+      gradient_.emplace_back(box);
+    }
+    qLow_.emplace_back(box);
+    rPlus_.emplace_back(box, Staggering::Cell, 1.0);
+    rMinus_.emplace_back(box, Staggering::Cell, 1.0);
+  }
+}
+
+std::vector<Field*> PhaseTransport::limiterFields() {
+  std::vector<Field*> out;
+  for (int i = 0; i < phases_; ++i) {
+    out.push_back(&rPlus_[static_cast<std::size_t>(i)]);
+    out.push_back(&rMinus_[static_cast<std::size_t>(i)]);
+  }
+  return out;
+}
+
+void PhaseTransport::computeFluxes(const std::vector<Field>& alpha, const Field& eps, const std::array<const Field*, 3>& flux,
+                                   double dt, const Sides& sides, const TransportSettings& settings) {
+  if (static_cast<int>(alpha.size()) != phases_) throw std::invalid_argument("vof: phase count differs from the work arrays'");
+  const int N = phases_;
+  const auto& n = box_.cells;
+  const double h[3] = {spacing(box_, 0), spacing(box_, 1), spacing(box_, 2)};
+  dt_ = dt;
+  epsOld_.data() = eps.data();
+
+  // Cell-centred gradients of every phase on the cells -1..n (central differences; the ghosts
+  // -2 and n+1 are read): the face normals of the compression need them on both sides of a face.
+  if (settings.compression > 0.0) {
+    for (int i = 0; i < N; ++i)
+      for (int a = 0; a < 3; ++a) {
+        const Field& al = alpha[static_cast<std::size_t>(i)];
+        Field& gr = gradient_[static_cast<std::size_t>(3 * i + a)];
+        const double inv2h = 0.5 / h[a];
+        forCells({-1, -1, -1}, {n[0] + 1, n[1] + 1, n[2] + 1}, [&](int x, int y, int z) {
+          gr(x, y, z) = (at(al, shifted(x, y, z, a, 1)) - at(al, shifted(x, y, z, a, -1))) * inv2h;
+        });
+      }
+  }
+  const double delta = 1e-8 / std::cbrt(box_.cellVolume());  // OpenFOAM's deltaN = 1e-8 / (mean cell size)
+
+  // Face fluxes: faces 0..n along a (between cells f-1 and f), cells 0..n-1 along the other axes.
+  for (int a = 0; a < 3; ++a) {
+    const Field& phi = *flux[static_cast<std::size_t>(a)];
+    std::array<int, 3> hi{n[0], n[1], n[2]};
+    hi[static_cast<std::size_t>(a)] += 1;
+    const bool wallLow = sides.at(a, 0) == SideType::Wall, wallHigh = sides.at(a, 1) == SideType::Wall;
+    const int na = n[static_cast<std::size_t>(a)];
+    forCells({0, 0, 0}, hi, [&](int x, int y, int z) {
+      const auto P = shifted(x, y, z, a, -1);
+      const std::array<int, 3> Nc{x, y, z};
+      const int f = Nc[static_cast<std::size_t>(a)];
+      const bool wall = (f == 0 && wallLow) || (f == na && wallHigh);
+      const double ph = wall ? 0.0 : phi(x, y, z);
+      const auto& up = ph >= 0.0 ? P : Nc;
+      const double courant = std::abs(ph) * dt / (std::max(at(eps, up), 1e-12) * h[a]);
+      for (int i = 0; i < N; ++i) {
+        const Field& al = alpha[static_cast<std::size_t>(i)];
+        const double aUp = at(al, up), aDown = at(al, ph >= 0.0 ? Nc : P);
+        low_[static_cast<std::size_t>(3 * i + a)](x, y, z) = ph * aUp;
+        anti_[static_cast<std::size_t>(3 * i + a)](x, y, z) =
+            settings.highOrder ? ph * kernels::laxWendroffIncrement(aUp, aDown, courant) : 0.0;
+      }
+      if (settings.compression > 0.0 && ph != 0.0) {
+        const double phic = settings.compression * std::abs(ph);  // C |phi_f|: u_c of seed 002 eq. 2
+        for (int i = 0; i < N; ++i)
+          for (int j = i + 1; j < N; ++j) {
+            const Field& ai = alpha[static_cast<std::size_t>(i)];
+            const Field& aj = alpha[static_cast<std::size_t>(j)];
+            double g[3];
+            for (int b = 0; b < 3; ++b) {
+              const Field& gi = gradient_[static_cast<std::size_t>(3 * i + b)];
+              const Field& gj = gradient_[static_cast<std::size_t>(3 * j + b)];
+              const double gP = at(aj, P) * at(gi, P) - at(ai, P) * at(gj, P);
+              const double gN = at(aj, Nc) * at(gi, Nc) - at(ai, Nc) * at(gj, Nc);
+              g[b] = 0.5 * (gP + gN);
+            }
+            const double phiR = phic * kernels::pairNormal(g[0], g[1], g[2], a, delta);
+            const double c = kernels::pairCompressionFlux(phiR, at(ai, P), at(ai, Nc), at(aj, P), at(aj, Nc));
+            anti_[static_cast<std::size_t>(3 * i + a)](x, y, z) += c;
+            anti_[static_cast<std::size_t>(3 * j + a)](x, y, z) -= c;
+          }
+      }
+    });
+  }
+
+  // Upwind solution, bounds and Zalesak's R+ / R- of the box's cells.
+  auto divergence = [&](const std::vector<Field>& faces, int base, int x, int y, int z) {
+    double d = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      const Field& F = faces[static_cast<std::size_t>(base + a)];
+      d += (at(F, shifted(x, y, z, a, 1)) - F(x, y, z)) / h[a];
+    }
+    return d;
+  };
+  forCells({0, 0, 0}, {n[0], n[1], n[2]}, [&](int x, int y, int z) {
+    double divPhi = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      const Field& phi = *flux[static_cast<std::size_t>(a)];
+      const int f = a == 0 ? x : (a == 1 ? y : z);
+      const double lower = (f == 0 && sides.at(a, 0) == SideType::Wall) ? 0.0 : phi(x, y, z);
+      const double upper = (f == n[static_cast<std::size_t>(a)] - 1 && sides.at(a, 1) == SideType::Wall)
+                               ? 0.0 : at(phi, shifted(x, y, z, a, 1));
+      divPhi += (upper - lower) / h[a];
+    }
+    const double epsStar = eps(x, y, z) - dt * divPhi;  // seed 002 eq. 5 (line 326), discretely
+    epsStar_(x, y, z) = epsStar;
+    for (int i = 0; i < N; ++i) {
+      const Field& al = alpha[static_cast<std::size_t>(i)];
+      const double q = eps(x, y, z) * al(x, y, z) - dt * divergence(low_, 3 * i, x, y, z);
+      qLow_[static_cast<std::size_t>(i)](x, y, z) = q;
+      double lo = al(x, y, z), hi = lo;
+      double pIn = 0.0, pOut = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        for (int d = -1; d <= 1; d += 2) {
+          const double v = at(al, shifted(x, y, z, a, d));
+          lo = std::min(lo, v);
+          hi = std::max(hi, v);
+        }
+        const Field& A = anti_[static_cast<std::size_t>(3 * i + a)];
+        const double aLow = A(x, y, z), aHigh = at(A, shifted(x, y, z, a, 1));  // along +a
+        pIn += (std::max(aLow, 0.0) + std::max(-aHigh, 0.0)) * dt / h[a];
+        pOut += (std::max(-aLow, 0.0) + std::max(aHigh, 0.0)) * dt / h[a];
+      }
+      lo = std::max(lo, 0.0);  // the physical bounds as well as the local ones (MULES' psiMin, psiMax)
+      hi = std::min(hi, 1.0);
+      rPlus_[static_cast<std::size_t>(i)](x, y, z) = kernels::zalesakRatio(epsStar * hi - q, pIn);
+      rMinus_[static_cast<std::size_t>(i)](x, y, z) = kernels::zalesakRatio(q - epsStar * lo, pOut);
+    }
+  });
+}
+
+void PhaseTransport::applyLimitedFluxes(std::vector<Field>& alpha) {
+  const int N = phases_;
+  const auto& n = box_.cells;
+  const double h[3] = {spacing(box_, 0), spacing(box_, 1), spacing(box_, 2)};
+  const double dt = dt_;
+  constexpr int kMaxPhases = 16;
+  if (N > kMaxPhases) throw std::invalid_argument("vof: at most 16 phases");
+
+  // Limited fluxes on every face of the box (anti_ then holds the whole flux F_i).
+  for (int a = 0; a < 3; ++a) {
+    std::array<int, 3> hi{n[0], n[1], n[2]};
+    hi[static_cast<std::size_t>(a)] += 1;
+    forCells({0, 0, 0}, hi, [&](int x, int y, int z) {
+      const auto P = shifted(x, y, z, a, -1);
+      double corr[kMaxPhases];
+      for (int i = 0; i < N; ++i) {
+        const double A = anti_[static_cast<std::size_t>(3 * i + a)](x, y, z);
+        const Field& rp = rPlus_[static_cast<std::size_t>(i)];
+        const Field& rm = rMinus_[static_cast<std::size_t>(i)];
+        corr[i] = A * kernels::faceFactor(A, at(rp, P), at(rm, P), rp(x, y, z), rm(x, y, z));
+      }
+      kernels::limitSum(corr, N);
+      for (int i = 0; i < N; ++i)
+        anti_[static_cast<std::size_t>(3 * i + a)](x, y, z) = low_[static_cast<std::size_t>(3 * i + a)](x, y, z) + corr[i];
+    });
+  }
+
+  // eps alpha_i after the step, and the renormalisation by their sum (= eps* to round-off).
+  forCells({0, 0, 0}, {n[0], n[1], n[2]}, [&](int x, int y, int z) {
+    double q[kMaxPhases];
+    double sum = 0.0;
+    for (int i = 0; i < N; ++i) {
+      double d = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        const Field& F = anti_[static_cast<std::size_t>(3 * i + a)];
+        d += (at(F, shifted(x, y, z, a, 1)) - F(x, y, z)) / h[a];
+      }
+      q[i] = epsOld_(x, y, z) * alpha[static_cast<std::size_t>(i)](x, y, z) - dt * d;
+      sum += q[i];
+    }
+    if (!(sum > 0.0)) return;  // no fluid volume left in the cell: keep its fractions
+    for (int i = 0; i < N; ++i) alpha[static_cast<std::size_t>(i)](x, y, z) = q[i] / sum;
+  });
+}
+
+void advance(PhaseTransport& work, std::vector<Field>& alpha, const Field& eps, const std::array<const Field*, 3>& flux,
+             double dt, const Sides& sides, const TransportSettings& settings, const GhostFill& fill) {
+  std::vector<Field*> a;
+  for (auto& f : alpha) a.push_back(&f);
+  fill(a);
+  work.computeFluxes(alpha, eps, flux, dt, sides, settings);
+  fill(work.limiterFields());
+  work.applyLimitedFluxes(alpha);
+  fill(a);
+}
+
+double maxCourant(const Field& eps, const std::array<const Field*, 3>& flux, double dt) {
+  const CartesianGrid& g = eps.grid();
+  const auto& n = g.cells;
+  const double h[3] = {spacing(g, 0), spacing(g, 1), spacing(g, 2)};
+  double m = 0.0;
+  for (int z = 0; z < n[2]; ++z)
+    for (int y = 0; y < n[1]; ++y)
+      for (int x = 0; x < n[0]; ++x) {
+        double out = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          const Field& phi = *flux[static_cast<std::size_t>(a)];
+          out += (std::max(at(phi, shifted(x, y, z, a, 1)), 0.0) + std::max(-phi(x, y, z), 0.0)) * dt / h[a];
+        }
+        m = std::max(m, out / std::max(eps(x, y, z), 1e-12));
+      }
+  return maxAcrossRanks(m);
+}
+
+double phaseVolume(const Field& alpha, const Field& eps, const SumPolicy& policy) {
+  const auto& n = alpha.grid().cells;
+  const std::int64_t lines = static_cast<std::int64_t>(n[1]) * n[2];
+  const double v = alpha.grid().cellVolume();
+  return globalSum(lines, policy, [&](std::int64_t l) {
+    const int y = static_cast<int>(l % n[1]), z = static_cast<int>(l / n[1]);
+    double s = 0.0;
+    for (int x = 0; x < n[0]; ++x) s += eps(x, y, z) * alpha(x, y, z);
+    return s * v;
+  });
+}
+
+double maxSumError(const std::vector<Field>& alpha) {
+  const auto& n = alpha.front().grid().cells;
+  double m = 0.0;
+  for (int z = 0; z < n[2]; ++z)
+    for (int y = 0; y < n[1]; ++y)
+      for (int x = 0; x < n[0]; ++x) {
+        double s = 0.0;
+        for (const Field& a : alpha) s += a(x, y, z);
+        m = std::max(m, std::abs(s - 1.0));
+      }
+  return maxAcrossRanks(m);
+}
+
+std::array<double, 2> fractionRange(const Field& alpha) {
+  const auto& n = alpha.grid().cells;
+  double lo = alpha(0, 0, 0), hi = lo;
+  for (int z = 0; z < n[2]; ++z)
+    for (int y = 0; y < n[1]; ++y)
+      for (int x = 0; x < n[0]; ++x) {
+        lo = std::min(lo, alpha(x, y, z));
+        hi = std::max(hi, alpha(x, y, z));
+      }
+  return {-maxAcrossRanks(-lo), maxAcrossRanks(hi)};
+}
+
+void mixtureField(const std::vector<Field>& alpha, const std::vector<double>& value, Field& out) {
+  const int N = static_cast<int>(alpha.size());
+  if (static_cast<int>(value.size()) != N) throw std::invalid_argument("vof: one value per phase");
+  auto& o = out.data();
+  gf::parallelFor(static_cast<std::int64_t>(o.size()), [&](std::int64_t p) {
+    double s = 0.0;  // seed 002 eqs. 3-4 (lines 320-322)
+    for (int i = 0; i < N; ++i) s += alpha[static_cast<std::size_t>(i)].data()[static_cast<std::size_t>(p)] * value[static_cast<std::size_t>(i)];
+    o[static_cast<std::size_t>(p)] = s;
+  });
+}
+
+}  // namespace gf::vof
