@@ -365,3 +365,54 @@ TEST(VofTransport, ZalesakSlottedDiskKeepsItsShapeOverOneRevolution) {
   EXPECT_GE(r[0], -1e-12);
   EXPECT_LE(r[1], 1.0 + 1e-12);
 }
+
+TEST(VofTransport, ChangingVoidFractionKeepsAUniformMixtureUniformAndConservesEachPhase) {
+  // A bed that fills and empties: a divergent superficial flux phi(x) changes eps by seed 002
+  // eq. 5, eps_new = eps - dt dphi/dx. A uniform mixture must stay uniform (no fractions made by
+  // the bed), and a layered one keeps each phase's eps alpha_i V.
+  const int n = 64;
+  const CartesianGrid g = makeGrid(n, 1, 1.0, 1.0 / n);
+  Fluxes f = streamFluxes(g, [](double, double) { return 0.0; }, 0.0, 0.0);
+  for (int i = -2; i < n + 3; ++i) f.u(i, 0, 0) = 0.3 + 0.1 * std::sin(2.0 * kPi * i / n);
+  const auto sides = vof::Sides::allPeriodic();
+  Field eps(g, Staggering::Cell, 0.8);
+  auto uniform = phases(g, 3), layered = phases(g, 3);
+  for (int i = 0; i < n; ++i) {
+    const double x = g.cellCentre(i, 0, 0).x;
+    uniform[0](i, 0, 0) = 0.2, uniform[1](i, 0, 0) = 0.3, uniform[2](i, 0, 0) = 0.5;
+    layered[1](i, 0, 0) = x < 0.3 ? 1.0 : 0.0;
+    layered[2](i, 0, 0) = x >= 0.3 && x < 0.6 ? 1.0 : 0.0;
+    layered[0](i, 0, 0) = 1.0 - layered[1](i, 0, 0) - layered[2](i, 0, 0);
+  }
+  double v0[3];
+  for (int p = 0; p < 3; ++p) v0[p] = vof::phaseVolume(layered[static_cast<std::size_t>(p)], eps);
+  const double dt = 0.5 * g.spacing.x;  // outflow Courant <= 1/3 while eps >= 0.6
+  vof::PhaseTransport work(g, 3), workUniform(g, 3);
+  double uniformError = 0.0, epsMin = 1.0, epsMax = 0.0;
+  for (int s = 0; s < 40; ++s) {
+    vof::fillCellGhosts(eps, sides);
+    vof::advance(workUniform, uniform, eps, f.ptr(), dt, sides, {}, vof::singleBoxFill(sides));
+    vof::advance(work, layered, eps, f.ptr(), dt, sides, {}, vof::singleBoxFill(sides));
+    Field next(g);
+    for (int i = 0; i < n; ++i) {
+      next(i, 0, 0) = eps(i, 0, 0) - dt * (f.u(i + 1, 0, 0) - f.u(i, 0, 0)) / g.spacing.x;  // seed 002 eq. 5
+      EXPECT_NEAR(work.transportedVoidFraction()(i, 0, 0), next(i, 0, 0), 1e-15);
+      epsMin = std::min(epsMin, next(i, 0, 0));
+      epsMax = std::max(epsMax, next(i, 0, 0));
+      for (int p = 0; p < 3; ++p)
+        uniformError = std::max(uniformError, std::abs(uniform[static_cast<std::size_t>(p)](i, 0, 0) - (p == 0 ? 0.2 : p == 1 ? 0.3 : 0.5)));
+    }
+    eps = next;
+  }
+  std::printf("[ figures  ] eps between %.3f and %.3f over 40 steps: uniform mixture kept to %.2e\n", epsMin, epsMax, uniformError);
+  EXPECT_LT(epsMin, 0.7);  // the bed did change, within physical values
+  EXPECT_LE(epsMax, 1.0);
+  EXPECT_LE(uniformError, 1e-14);
+  for (int p = 0; p < 3; ++p) {
+    const auto r = vof::fractionRange(layered[static_cast<std::size_t>(p)]);
+    EXPECT_GE(r[0], -1e-12);
+    EXPECT_LE(r[1], 1.0 + 1e-12);
+    EXPECT_NEAR(vof::phaseVolume(layered[static_cast<std::size_t>(p)], eps) / v0[p], 1.0, 1e-12);
+  }
+  EXPECT_LE(vof::maxSumError(layered), 1e-12);
+}
