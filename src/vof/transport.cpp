@@ -113,6 +113,14 @@ void PhaseTransport::computeFluxes(const std::vector<Field>& alpha, const Field&
   const int N = phases_;
   const auto& n = box_.cells;
   const double h[3] = {spacing(box_, 0), spacing(box_, 1), spacing(box_, 2)};
+  // The loops address every field by the flat index of the box's layout.
+  if (eps.extent() != epsOld_.extent()) throw std::invalid_argument("vof: the void fraction is not on the box's grid");
+  for (const Field& al : alpha)
+    if (al.extent() != epsOld_.extent()) throw std::invalid_argument("vof: a phase fraction is not on the box's grid");
+  for (int a = 0; a < 3; ++a)
+    if (flux[static_cast<std::size_t>(a)]->extent() != anti_[static_cast<std::size_t>(a)].extent() ||
+        flux[static_cast<std::size_t>(a)]->staggering() != anti_[static_cast<std::size_t>(a)].staggering())
+      throw std::invalid_argument("vof: a face flux is not a face field of the box's grid");
   dt_ = dt;
   epsOld_.data() = eps.data();
 
@@ -124,8 +132,11 @@ void PhaseTransport::computeFluxes(const std::vector<Field>& alpha, const Field&
         const Field& al = alpha[static_cast<std::size_t>(i)];
         Field& gr = gradient_[static_cast<std::size_t>(3 * i + a)];
         const double inv2h = 0.5 / h[a];
+        const double* av = al.data().data();
+        const std::ptrdiff_t cs = al.stride(a);
         forCells({-1, -1, -1}, {n[0] + 1, n[1] + 1, n[2] + 1}, [&](int x, int y, int z) {
-          gr(x, y, z) = (at(al, shifted(x, y, z, a, 1)) - at(al, shifted(x, y, z, a, -1))) * inv2h;
+          const auto c = static_cast<std::ptrdiff_t>(al.index(x, y, z));
+          gr.data()[static_cast<std::size_t>(c)] = (av[c + cs] - av[c - cs]) * inv2h;
         });
       }
   }
@@ -138,86 +149,90 @@ void PhaseTransport::computeFluxes(const std::vector<Field>& alpha, const Field&
     hi[static_cast<std::size_t>(a)] += 1;
     const bool wallLow = sides.at(a, 0) == SideType::Wall, wallHigh = sides.at(a, 1) == SideType::Wall;
     const int na = n[static_cast<std::size_t>(a)];
+    const std::ptrdiff_t cs = eps.stride(a);
     forCells({0, 0, 0}, hi, [&](int x, int y, int z) {
-      const auto P = shifted(x, y, z, a, -1);
-      const std::array<int, 3> Nc{x, y, z};
-      const int f = Nc[static_cast<std::size_t>(a)];
+      const std::size_t iN = eps.index(x, y, z), iP = iN - static_cast<std::size_t>(cs);  // cells f and f-1
+      const std::size_t iF = phi.index(x, y, z);  // the face (every face field of axis a: same layout)
+      const int f = a == 0 ? x : (a == 1 ? y : z);
       const bool wall = (f == 0 && wallLow) || (f == na && wallHigh);
-      const double ph = wall ? 0.0 : phi(x, y, z);
-      const auto& up = ph >= 0.0 ? P : Nc;
-      const double courant = std::abs(ph) * dt / (std::max(at(eps, up), 1e-12) * h[a]);
+      const double ph = wall ? 0.0 : phi.data()[iF];
+      const std::size_t iUp = ph >= 0.0 ? iP : iN, iDown = ph >= 0.0 ? iN : iP;
+      const double courant = std::abs(ph) * dt / (std::max(eps.data()[iUp], 1e-12) * h[a]);
       for (int i = 0; i < N; ++i) {
-        const Field& al = alpha[static_cast<std::size_t>(i)];
-        const double aUp = at(al, up), aDown = at(al, ph >= 0.0 ? Nc : P);
-        low_[static_cast<std::size_t>(3 * i + a)](x, y, z) = ph * aUp;
-        anti_[static_cast<std::size_t>(3 * i + a)](x, y, z) =
-            settings.highOrder ? ph * kernels::laxWendroffIncrement(aUp, aDown, courant) : 0.0;
+        const double* al = alpha[static_cast<std::size_t>(i)].data().data();
+        low_[static_cast<std::size_t>(3 * i + a)].data()[iF] = ph * al[iUp];
+        anti_[static_cast<std::size_t>(3 * i + a)].data()[iF] =
+            settings.highOrder ? ph * kernels::laxWendroffIncrement(al[iUp], al[iDown], courant) : 0.0;
       }
       if (settings.compression > 0.0 && ph != 0.0) {
         const double phic = settings.compression * std::abs(ph);  // C |phi_f|: u_c of seed 002 eq. 2
         for (int i = 0; i < N; ++i)
           for (int j = i + 1; j < N; ++j) {
-            const Field& ai = alpha[static_cast<std::size_t>(i)];
-            const Field& aj = alpha[static_cast<std::size_t>(j)];
+            const double* ai = alpha[static_cast<std::size_t>(i)].data().data();
+            const double* aj = alpha[static_cast<std::size_t>(j)].data().data();
             double g[3];
             for (int b = 0; b < 3; ++b) {
-              const Field& gi = gradient_[static_cast<std::size_t>(3 * i + b)];
-              const Field& gj = gradient_[static_cast<std::size_t>(3 * j + b)];
-              const double gP = at(aj, P) * at(gi, P) - at(ai, P) * at(gj, P);
-              const double gN = at(aj, Nc) * at(gi, Nc) - at(ai, Nc) * at(gj, Nc);
+              const double* gi = gradient_[static_cast<std::size_t>(3 * i + b)].data().data();
+              const double* gj = gradient_[static_cast<std::size_t>(3 * j + b)].data().data();
+              const double gP = aj[iP] * gi[iP] - ai[iP] * gj[iP];
+              const double gN = aj[iN] * gi[iN] - ai[iN] * gj[iN];
               g[b] = 0.5 * (gP + gN);
             }
             const double phiR = phic * kernels::pairNormal(g[0], g[1], g[2], a, delta);
-            const double c = kernels::pairCompressionFlux(phiR, at(ai, P), at(ai, Nc), at(aj, P), at(aj, Nc));
-            anti_[static_cast<std::size_t>(3 * i + a)](x, y, z) += c;
-            anti_[static_cast<std::size_t>(3 * j + a)](x, y, z) -= c;
+            const double c = kernels::pairCompressionFlux(phiR, ai[iP], ai[iN], aj[iP], aj[iN]);
+            anti_[static_cast<std::size_t>(3 * i + a)].data()[iF] += c;
+            anti_[static_cast<std::size_t>(3 * j + a)].data()[iF] -= c;
           }
       }
     });
   }
 
   // Upwind solution, bounds and Zalesak's R+ / R- of the box's cells.
-  auto divergence = [&](const std::vector<Field>& faces, int base, int x, int y, int z) {
-    double d = 0.0;
-    for (int a = 0; a < 3; ++a) {
-      const Field& F = faces[static_cast<std::size_t>(base + a)];
-      d += (at(F, shifted(x, y, z, a, 1)) - F(x, y, z)) / h[a];
-    }
-    return d;
-  };
+  // Flat-index strides: cells along each axis, and faces along their own axis (every face field of
+  // an axis has the layout of flux[a]).
+  std::ptrdiff_t cellStride[3], faceStride[3];
+  for (int a = 0; a < 3; ++a) {
+    cellStride[a] = eps.stride(a);
+    faceStride[a] = flux[static_cast<std::size_t>(a)]->stride(a);
+  }
   forCells({0, 0, 0}, {n[0], n[1], n[2]}, [&](int x, int y, int z) {
+    const std::size_t c = eps.index(x, y, z);
+    std::size_t fl[3];  // the cell's lower face along each axis
     double divPhi = 0.0;
     for (int a = 0; a < 3; ++a) {
       const Field& phi = *flux[static_cast<std::size_t>(a)];
+      fl[a] = phi.index(x, y, z);
       const int f = a == 0 ? x : (a == 1 ? y : z);
-      const double lower = (f == 0 && sides.at(a, 0) == SideType::Wall) ? 0.0 : phi(x, y, z);
+      const double lower = (f == 0 && sides.at(a, 0) == SideType::Wall) ? 0.0 : phi.data()[fl[a]];
       const double upper = (f == n[static_cast<std::size_t>(a)] - 1 && sides.at(a, 1) == SideType::Wall)
-                               ? 0.0 : at(phi, shifted(x, y, z, a, 1));
+                               ? 0.0 : phi.data()[fl[a] + static_cast<std::size_t>(faceStride[a])];
       divPhi += (upper - lower) / h[a];
     }
-    const double epsStar = eps(x, y, z) - dt * divPhi;  // seed 002 eq. 5 (line 326), discretely
-    epsStar_(x, y, z) = epsStar;
+    const double e = eps.data()[c];
+    const double epsStar = e - dt * divPhi;  // seed 002 eq. 5 (line 326), discretely
+    epsStar_.data()[c] = epsStar;
     for (int i = 0; i < N; ++i) {
-      const Field& al = alpha[static_cast<std::size_t>(i)];
-      const double q = eps(x, y, z) * al(x, y, z) - dt * divergence(low_, 3 * i, x, y, z);
-      qLow_[static_cast<std::size_t>(i)](x, y, z) = q;
-      double lo = al(x, y, z), hi = lo;
-      double pIn = 0.0, pOut = 0.0;
+      const double* al = alpha[static_cast<std::size_t>(i)].data().data();
+      double divLow = 0.0, pIn = 0.0, pOut = 0.0;
+      double lo = al[c], hi = lo;
       for (int a = 0; a < 3; ++a) {
-        for (int d = -1; d <= 1; d += 2) {
-          const double v = at(al, shifted(x, y, z, a, d));
-          lo = std::min(lo, v);
-          hi = std::max(hi, v);
-        }
-        const Field& A = anti_[static_cast<std::size_t>(3 * i + a)];
-        const double aLow = A(x, y, z), aHigh = at(A, shifted(x, y, z, a, 1));  // along +a
+        const double* L = low_[static_cast<std::size_t>(3 * i + a)].data().data();
+        const double* A = anti_[static_cast<std::size_t>(3 * i + a)].data().data();
+        const std::size_t up = fl[a] + static_cast<std::size_t>(faceStride[a]);
+        divLow += (L[up] - L[fl[a]]) / h[a];
+        const double vm = al[c - static_cast<std::size_t>(cellStride[a])], vp = al[c + static_cast<std::size_t>(cellStride[a])];
+        lo = std::min({lo, vm, vp});
+        hi = std::max({hi, vm, vp});
+        const double aLow = A[fl[a]], aHigh = A[up];  // along +a
         pIn += (std::max(aLow, 0.0) + std::max(-aHigh, 0.0)) * dt / h[a];
         pOut += (std::max(-aLow, 0.0) + std::max(aHigh, 0.0)) * dt / h[a];
       }
+      const double q = e * al[c] - dt * divLow;
+      qLow_[static_cast<std::size_t>(i)].data()[c] = q;
       lo = std::max(lo, 0.0);  // the physical bounds as well as the local ones (MULES' psiMin, psiMax)
       hi = std::min(hi, 1.0);
-      rPlus_[static_cast<std::size_t>(i)](x, y, z) = kernels::zalesakRatio(epsStar * hi - q, pIn);
-      rMinus_[static_cast<std::size_t>(i)](x, y, z) = kernels::zalesakRatio(q - epsStar * lo, pOut);
+      rPlus_[static_cast<std::size_t>(i)].data()[c] = kernels::zalesakRatio(epsStar * hi - q, pIn);
+      rMinus_[static_cast<std::size_t>(i)].data()[c] = kernels::zalesakRatio(q - epsStar * lo, pOut);
     }
   });
 }
@@ -234,18 +249,20 @@ void PhaseTransport::applyLimitedFluxes(std::vector<Field>& alpha) {
   for (int a = 0; a < 3; ++a) {
     std::array<int, 3> hi{n[0], n[1], n[2]};
     hi[static_cast<std::size_t>(a)] += 1;
+    const std::ptrdiff_t cs = epsOld_.stride(a);
     forCells({0, 0, 0}, hi, [&](int x, int y, int z) {
-      const auto P = shifted(x, y, z, a, -1);
+      const std::size_t iN = epsOld_.index(x, y, z), iP = iN - static_cast<std::size_t>(cs);
+      const std::size_t iF = anti_[static_cast<std::size_t>(a)].index(x, y, z);
       double corr[kMaxPhases];
       for (int i = 0; i < N; ++i) {
-        const double A = anti_[static_cast<std::size_t>(3 * i + a)](x, y, z);
-        const Field& rp = rPlus_[static_cast<std::size_t>(i)];
-        const Field& rm = rMinus_[static_cast<std::size_t>(i)];
-        corr[i] = A * kernels::faceFactor(A, at(rp, P), at(rm, P), rp(x, y, z), rm(x, y, z));
+        const double A = anti_[static_cast<std::size_t>(3 * i + a)].data()[iF];
+        const double* rp = rPlus_[static_cast<std::size_t>(i)].data().data();
+        const double* rm = rMinus_[static_cast<std::size_t>(i)].data().data();
+        corr[i] = A * kernels::faceFactor(A, rp[iP], rm[iP], rp[iN], rm[iN]);
       }
       kernels::limitSum(corr, N);
       for (int i = 0; i < N; ++i)
-        anti_[static_cast<std::size_t>(3 * i + a)](x, y, z) = low_[static_cast<std::size_t>(3 * i + a)](x, y, z) + corr[i];
+        anti_[static_cast<std::size_t>(3 * i + a)].data()[iF] = low_[static_cast<std::size_t>(3 * i + a)].data()[iF] + corr[i];
     });
   }
 
@@ -253,17 +270,19 @@ void PhaseTransport::applyLimitedFluxes(std::vector<Field>& alpha) {
   forCells({0, 0, 0}, {n[0], n[1], n[2]}, [&](int x, int y, int z) {
     double q[kMaxPhases];
     double sum = 0.0;
+    const std::size_t c = epsOld_.index(x, y, z);
     for (int i = 0; i < N; ++i) {
       double d = 0.0;
       for (int a = 0; a < 3; ++a) {
         const Field& F = anti_[static_cast<std::size_t>(3 * i + a)];
-        d += (at(F, shifted(x, y, z, a, 1)) - F(x, y, z)) / h[a];
+        const std::size_t lower = F.index(x, y, z);
+        d += (F.data()[lower + static_cast<std::size_t>(F.stride(a))] - F.data()[lower]) / h[a];
       }
-      q[i] = epsOld_(x, y, z) * alpha[static_cast<std::size_t>(i)](x, y, z) - dt * d;
+      q[i] = epsOld_.data()[c] * alpha[static_cast<std::size_t>(i)].data()[c] - dt * d;
       sum += q[i];
     }
     if (!(sum > 0.0)) return;  // no fluid volume left in the cell: keep its fractions
-    for (int i = 0; i < N; ++i) alpha[static_cast<std::size_t>(i)](x, y, z) = q[i] / sum;
+    for (int i = 0; i < N; ++i) alpha[static_cast<std::size_t>(i)].data()[c] = q[i] / sum;
   });
 }
 
