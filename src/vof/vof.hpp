@@ -18,6 +18,10 @@
 #include "core/grid.hpp"
 #include "core/reduction.hpp"
 
+namespace gf::parallel {
+class Decomposition;
+}  // namespace gf::parallel
+
 namespace gf::vof {
 
 /// What lies beyond one side of a box: a periodic wrap of this box onto itself, a wall (no flux,
@@ -95,6 +99,12 @@ void advance(PhaseTransport& work, std::vector<Field>& alpha, const Field& eps, 
 
 /// The ghost fill of one box with no neighbours (fillCellGhosts with `sides` on every field).
 GhostFill singleBoxFill(const Sides& sides);
+/// The sides of this rank's box of a decomposition: Shared where it says so, Periodic where one
+/// rank wraps an axis onto itself, Wall on the domain's other sides.
+Sides boxSides(const parallel::Decomposition& d);
+/// The ghost fill of this rank's box: parallel::fillGhosts of the listed fields (one message per
+/// neighbour for all of them), then fillCellGhosts with boxSides(d). `d` must outlive the fill.
+GhostFill decomposedFill(const parallel::Decomposition& d);
 
 /// Largest outflow Courant number sum_faces max(0, phi_out) dt / (eps h) over the cells of every
 /// box (maxAcrossRanks): the upwind part, hence the whole step, is bounded for a value <= 1.
