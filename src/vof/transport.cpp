@@ -297,6 +297,38 @@ void advance(PhaseTransport& work, std::vector<Field>& alpha, const Field& eps, 
   fill(a);
 }
 
+int advanceSubcycled(PhaseTransport& work, std::vector<Field>& alpha, const Field& eps, const std::array<const Field*, 3>& flux,
+                     double dt, const Sides& sides, const TransportSettings& settings, const GhostFill& fill,
+                     double courantLimit) {
+  if (!(courantLimit > 0.0 && courantLimit <= 1.0)) throw std::invalid_argument("vof: the substeps' Courant limit must lie in (0, 1]");
+  // eps at the end of the step (seed 002 eq. 5), for the Courant number where the bed fills up
+  const CartesianGrid& g = eps.grid();
+  const auto& n = g.cells;
+  Field epsEnd(eps);
+  for (int z = 0; z < n[2]; ++z)
+    for (int y = 0; y < n[1]; ++y)
+      for (int x = 0; x < n[0]; ++x) {
+        double divPhi = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          const Field& phi = *flux[static_cast<std::size_t>(a)];
+          divPhi += (at(phi, shifted(x, y, z, a, 1)) - phi(x, y, z)) / spacing(g, a);
+        }
+        epsEnd(x, y, z) = eps(x, y, z) - dt * divPhi;
+      }
+  const double courant = std::max(maxCourant(eps, flux, dt), maxCourant(epsEnd, flux, dt));
+  const int substeps = std::max(1, static_cast<int>(std::ceil(courant / courantLimit)));
+  const double h = dt / substeps;
+  Field e(eps);
+  for (int k = 0; k < substeps; ++k) {
+    advance(work, alpha, e, flux, h, sides, settings, fill);
+    if (k + 1 < substeps) {
+      e.data() = work.transportedVoidFraction().data();
+      fill({&e});
+    }
+  }
+  return substeps;
+}
+
 double maxCourant(const Field& eps, const std::array<const Field*, 3>& flux, double dt) {
   const CartesianGrid& g = eps.grid();
   const auto& n = g.cells;

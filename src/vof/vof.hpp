@@ -97,6 +97,15 @@ class PhaseTransport {
 void advance(PhaseTransport& work, std::vector<Field>& alpha, const Field& eps, const std::array<const Field*, 3>& flux,
              double dt, const Sides& sides, const TransportSettings& settings, const GhostFill& fill);
 
+/// advance() in m equal substeps, m the smallest count that keeps the outflow Courant number of a
+/// substep at or below courantLimit (with the smaller of eps and the step's transported eps), the
+/// same on every rank. Each substep starts from the previous one's transported void fraction eps*
+/// (ghosts filled by `fill`), so eps goes linearly from eps to eps - dt div(phi) and every phase
+/// stays conserved (MULES' sub-cycling, nAlphaSubCycles, chosen from the Courant number). Returns m.
+int advanceSubcycled(PhaseTransport& work, std::vector<Field>& alpha, const Field& eps,
+                     const std::array<const Field*, 3>& flux, double dt, const Sides& sides,
+                     const TransportSettings& settings, const GhostFill& fill, double courantLimit = 0.5);
+
 /// The ghost fill of one box with no neighbours (fillCellGhosts with `sides` on every field).
 GhostFill singleBoxFill(const Sides& sides);
 /// The sides of this rank's box of a decomposition: Shared where it says so, Periodic where one
