@@ -36,6 +36,11 @@ FictitiousDomain::FictitiousDomain(Params& root, fluid::Solver& fluid, dem::Part
                                "000 lines 471-510 (drag too low unless nu dt / h^2 << 1). Particles: always explicit "
                                "(docs/resolved.md)"},
                               {"implicit", "explicit"}, "implicit") == "implicit";
+  particleImplicit_ = section.choice({"particle_forcing", "-",
+                                       "forcing of the particles: explicit (seed 000 lines 471-510; needs nu dt / h^2 << "
+                                       "1) or implicit (the penalty of the fixed bodies; unstable for light particles: "
+                                       "the particle update lags the force by one step, docs/resolved.md)"},
+                                      {"explicit", "implicit"}, "explicit") == "implicit";
   radiusOffsetCells_ = section.real(
       {"radius_offset", "cells",
        "the forcing covers the bodies with radii larger by this many cell sizes (the explicit forcing's no-slip "
@@ -153,7 +158,8 @@ void FictitiousDomain::impose(Field (&u)[3], double dt, double gamma0) {
     if (!implicit_) forcingSums_[k] = imposeRigidMotion(forcingBody(f.body), box_, u, rho_, gamma0, dt);
     ++k;
   }
-  for (const Body& b : particleBodies_) forcingSums_[k++] = imposeRigidMotion(forcingBody(b), box_, u, rho_, gamma0, dt);
+  if (!particleImplicit_)
+    for (const Body& b : particleBodies_) forcingSums_[k++] = imposeRigidMotion(forcingBody(b), box_, u, rho_, gamma0, dt);
 }
 
 void FictitiousDomain::fluidStep(fluid::Solver& fluid, dem::ParticleSet& particles, double dt) {
@@ -172,7 +178,7 @@ void FictitiousDomain::fluidStep(fluid::Solver& fluid, dem::ParticleSet& particl
   // The explicit forcing holds the no-slip condition to O(nu dt / h^2) only (docs/resolved.md).
   const double h = std::min({box_.grid.spacing.x, box_.grid.spacing.y, box_.twoD ? box_.grid.spacing.y : box_.grid.spacing.z});
   const double viscousNumber = fluid.viscosity() / rho_ * dt / (h * h);
-  if (!viscousWarned_ && (!owned.empty() || (!implicit_ && nf > 0)) && viscousNumber > 0.1) {
+  if (!viscousWarned_ && ((!particleImplicit_ && !owned.empty()) || (!implicit_ && nf > 0)) && viscousNumber > 0.1) {
     spdlog::warn("resolved: the explicit forcing with nu dt / h^2 = {:.3g} > 0.1 lets fluid through the bodies (drag "
                  "too low); a fluid step below {:.3g} s keeps it at 0.02 (docs/resolved.md)",
                  viscousNumber, 0.02 * h * h * rho_ / fluid.viscosity());
@@ -184,21 +190,25 @@ void FictitiousDomain::fluidStep(fluid::Solver& fluid, dem::ParticleSet& particl
   // the first step).
   const double gamma0 = fluid.stepsDone() > 0 ? 1.5 : 1.0;
   const double diagonal = predictorDiagonal(rho_, fluid.viscosity(), gamma0, dt, box_.grid.spacing, box_.twoD);
-  if (implicit_) setPenalty(fluid, diagonal);
+  if (implicit_ || particleImplicit_) setPenalty(fluid, diagonal);
 
   fluid.step(dt);  // predictor, projection (explicit forcing: impose, through the hook, between them)
 
   const std::array<const Field*, 3> u{&fluid.velocity(0), &fluid.velocity(1), &fluid.velocity(2)};
-  if (implicit_) {
+  if (implicit_)
     for (std::size_t b = 0; b < nf; ++b)
       forcingSums_[b] = implicitForcingLoad(forcingBody(fixed_[b].body), box_, u, diagonal);
-  }
+  if (particleImplicit_)
+    for (std::size_t q = 0; q < owned.size(); ++q)
+      forcingSums_[nf + q] = implicitForcingLoad(forcingBody(particleBodies_[q]), box_, u, diagonal);
 
   // Fluid momentum inside each body after the projection: the rigid-body correction rho dI/dt
   // (Kempe & Froehlich 2012 eq. 8), I from this step and the last.
   std::vector<FaceSums> inside(n);
   for (std::size_t b = 0; b < nf; ++b) inside[b] = fluidMomentumInside(forcingBody(fixed_[b].body), box_, u);
-  for (std::size_t q = 0; q < owned.size(); ++q) inside[nf + q] = fluidMomentumInside(forcingBody(particleBodies_[q]), box_, u);
+  for (std::size_t q = 0; q < owned.size(); ++q)
+    inside[nf + q] = particleImplicit_ ? penaltyMomentumInside(forcingBody(particleBodies_[q]), box_, u, diagonal)
+                                       : fluidMomentumInside(forcingBody(particleBodies_[q]), box_, u);
 
   if (distributed_) {
     // The fixed bodies' sums over the ranks' cells and faces. (The particle sums are per rank-owned
@@ -277,7 +287,10 @@ void FictitiousDomain::setPenalty(fluid::Solver& fluid, double diagonal) {
       for (int c = 0; c < 3; ++c) fields.particleVelocity[c].data()[q] += k1 * ub[c];  // (sum K u_b, divided below)
     });
   };
-  for (const FixedBody& f : fixed_) add(f.body);
+  if (implicit_)
+    for (const FixedBody& f : fixed_) add(f.body);
+  if (particleImplicit_)
+    for (const Body& b : particleBodies_) add(b);
   for (std::size_t q : penaltyCells_)
     for (int c = 0; c < 3; ++c) fields.particleVelocity[c].data()[q] /= K.data()[q];
 }

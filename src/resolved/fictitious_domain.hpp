@@ -90,6 +90,7 @@ class FictitiousDomain {
   Vec3 gravity_;
   bool distributed_ = false;
   bool implicit_ = true;                  // resolved.forcing
+  bool particleImplicit_ = false;         // resolved.particle_forcing
   bool viscousWarned_ = false;            // the explicit forcing's nu dt / h^2 warning, given once
   std::vector<std::size_t> penaltyCells_;  // cells with K > 0 (implicit forcing)
   bool penaltyCellsKnown_ = false;         // penaltyCells_ lists every cell with K > 0
