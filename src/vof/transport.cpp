@@ -66,6 +66,7 @@ void fillCellGhosts(Field& f, const Sides& sides) {
             const int ghost = side == 0 ? -l : n - 1 + l;
             int from;
             if (t == SideType::Periodic) from = side == 0 ? n - l : l - 1;
+            else if (t == SideType::Open) from = side == 0 ? 0 : n - 1;  // the boundary cell, repeated
             else from = side == 0 ? std::min(l - 1, n - 1) : std::max(n - l, 0);  // mirror: zero normal gradient
             d[static_cast<std::size_t>(origin + ghost * s)] = d[static_cast<std::size_t>(origin + from * s)];
           }
@@ -148,6 +149,15 @@ void PhaseTransport::computeFluxes(const std::vector<Field>& alpha, const Field&
     std::array<int, 3> hi{n[0], n[1], n[2]};
     hi[static_cast<std::size_t>(a)] += 1;
     const bool wallLow = sides.at(a, 0) == SideType::Wall, wallHigh = sides.at(a, 1) == SideType::Wall;
+    const bool openLow = sides.at(a, 0) == SideType::Open, openHigh = sides.at(a, 1) == SideType::Open;
+    for (int s = 0; s < 2; ++s) {
+      const auto& in = sides.inflow[static_cast<std::size_t>(2 * a + s)];
+      if (in.empty()) continue;
+      double sum = 0.0;
+      for (double v : in) sum += v;
+      if (static_cast<int>(in.size()) != N || std::abs(sum - 1.0) > 1e-12)
+        throw std::invalid_argument("vof: the inflow fractions of a side must be one per phase and sum to 1");
+    }
     const int na = n[static_cast<std::size_t>(a)];
     const std::ptrdiff_t cs = eps.stride(a);
     forCells({0, 0, 0}, hi, [&](int x, int y, int z) {
@@ -158,6 +168,18 @@ void PhaseTransport::computeFluxes(const std::vector<Field>& alpha, const Field&
       const double ph = wall ? 0.0 : phi.data()[iF];
       const std::size_t iUp = ph >= 0.0 ? iP : iN, iDown = ph >= 0.0 ? iN : iP;
       const double courant = std::abs(ph) * dt / (std::max(eps.data()[iUp], 1e-12) * h[a]);
+      const int openSide = f == 0 && openLow ? 0 : (f == na && openHigh ? 1 : -1);
+      if (openSide >= 0) {  // an inlet or outlet face: upwind, no correction
+        const auto& in = sides.inflow[static_cast<std::size_t>(2 * a + openSide)];
+        const bool inward = openSide == 0 ? ph > 0.0 : ph < 0.0;
+        for (int i = 0; i < N; ++i) {
+          const double up = inward && !in.empty() ? in[static_cast<std::size_t>(i)]
+                                                  : alpha[static_cast<std::size_t>(i)].data()[iUp];
+          low_[static_cast<std::size_t>(3 * i + a)].data()[iF] = ph * up;
+          anti_[static_cast<std::size_t>(3 * i + a)].data()[iF] = 0.0;
+        }
+        return;
+      }
       for (int i = 0; i < N; ++i) {
         const double* al = alpha[static_cast<std::size_t>(i)].data().data();
         low_[static_cast<std::size_t>(3 * i + a)].data()[iF] = ph * al[iUp];
@@ -284,6 +306,26 @@ void PhaseTransport::applyLimitedFluxes(std::vector<Field>& alpha) {
     if (!(sum > 0.0)) return;  // no fluid volume left in the cell: keep its fractions
     for (int i = 0; i < N; ++i) alpha[static_cast<std::size_t>(i)].data()[c] = q[i] / sum;
   });
+}
+
+double PhaseTransport::boundaryOutflow(int phase, int axis, int s, const Sides& sides) const {
+  double local = 0.0;
+  if (sides.at(axis, s) != SideType::Shared) {
+    const Field& F = anti_[static_cast<std::size_t>(3 * phase + axis)];  // the step's whole fluxes
+    const auto& n = box_.cells;
+    const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+    const double area = box_.cellVolume() / spacing(box_, axis);
+    for (int q = 0; q < n[static_cast<std::size_t>(c)]; ++q)
+      for (int p = 0; p < n[static_cast<std::size_t>(b)]; ++p) {
+        std::array<int, 3> idx{0, 0, 0};
+        idx[static_cast<std::size_t>(axis)] = s == 0 ? 0 : n[static_cast<std::size_t>(axis)];
+        idx[static_cast<std::size_t>(b)] = p;
+        idx[static_cast<std::size_t>(c)] = q;
+        local += F(idx[0], idx[1], idx[2]) * area;
+      }
+    if (s == 0) local = -local;  // along +axis is into the domain at the lower side
+  }
+  return sumAcrossRanks(local);
 }
 
 void advance(PhaseTransport& work, std::vector<Field>& alpha, const Field& eps, const std::array<const Field*, 3>& flux,

@@ -25,12 +25,17 @@ class Decomposition;
 namespace gf::vof {
 
 /// What lies beyond one side of a box: a periodic wrap of this box onto itself, a wall (no flux,
-/// zero normal gradient of alpha), or a neighbour box whose ghosts the caller exchanges.
-enum class SideType { Periodic, Wall, Shared };
+/// zero normal gradient of alpha), a neighbour box whose ghosts the caller exchanges, or an open
+/// side (an inlet or outlet: the fluid's flux crosses it, upwind, with no correction; what flows
+/// out carries the boundary cell's fractions, what flows in carries Sides::inflow's).
+enum class SideType { Periodic, Wall, Shared, Open };
 
 struct Sides {
   std::array<SideType, 6> side{SideType::Wall, SideType::Wall, SideType::Wall,
                                SideType::Wall, SideType::Wall, SideType::Wall};
+  /// Per side (index 2 * axis + s): the fractions of the fluid entering through an Open side, one
+  /// per phase, summing to 1; empty: the boundary cell's own (zero gradient).
+  std::array<std::vector<double>, 6> inflow;
   SideType at(int axis, int s) const { return side[static_cast<std::size_t>(2 * axis + s)]; }
   static Sides allPeriodic() {
     Sides s;
@@ -41,8 +46,8 @@ struct Sides {
 
 /// Ghosts of a cell field along each axis in order x, y, z over the whole extent of the other axes
 /// (so edges and corners are consistent): Periodic copies the other end of this box, Wall mirrors
-/// the first two cells (ghost -1 = cell 0, ghost -2 = cell 1: zero normal gradient), Shared is left
-/// alone (parallel::fillGhosts fills it first).
+/// the first two cells (ghost -1 = cell 0, ghost -2 = cell 1: zero normal gradient), Open repeats
+/// the first cell in both layers, Shared is left alone (parallel::fillGhosts fills it first).
 void fillCellGhosts(Field& f, const Sides& sides);
 
 /// Fills the ghosts of the listed cell fields (all of one box). One box: fillCellGhosts on each;
@@ -71,6 +76,10 @@ class PhaseTransport {
   /// box's cells; the caller then fills the ghosts of limiterFields().
   void computeFluxes(const std::vector<Field>& alpha, const Field& eps, const std::array<const Field*, 3>& flux,
                      double dt, const Sides& sides, const TransportSettings& settings);
+  /// After applyLimitedFluxes: the volume flow of phase i out of the domain through side s of axis
+  /// (m^3/s, negative for inflow), summed over the ranks (collective: every rank calls it; a Shared
+  /// side adds nothing). The outflow of each phase through an outlet, and the balance of its volume.
+  double boundaryOutflow(int phase, int axis, int s, const Sides& sides) const;
   /// The fields whose ghosts must be filled between the stages (R+ and R- of every phase).
   std::vector<Field*> limiterFields();
   /// Stage 2: Zalesak's face factors from the cells' R+/R-, the phases' corrections made to sum to
