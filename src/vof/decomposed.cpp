@@ -17,8 +17,9 @@ Sides boxSides(const parallel::Decomposition& d) {
   return s;
 }
 
-GhostFill decomposedFill(const parallel::Decomposition& d) {
-  const Sides sides = boxSides(d);
+GhostFill decomposedFill(const parallel::Decomposition& d) { return decomposedFill(d, boxSides(d)); }
+
+GhostFill decomposedFill(const parallel::Decomposition& d, const Sides& sides) {
   const parallel::Decomposition* dp = &d;
   return [dp, sides](const std::vector<Field*>& fields) {
     parallel::fillGhosts(fields, *dp);  // across the cuts, periodic wrap between ranks included

@@ -123,6 +123,8 @@ Sides boxSides(const parallel::Decomposition& d);
 /// The ghost fill of this rank's box: parallel::fillGhosts of the listed fields (one message per
 /// neighbour for all of them), then fillCellGhosts with boxSides(d). `d` must outlive the fill.
 GhostFill decomposedFill(const parallel::Decomposition& d);
+/// The same with the box's own sides (boxSides(d) with Open inlets and outlets set by the caller).
+GhostFill decomposedFill(const parallel::Decomposition& d, const Sides& sides);
 
 /// Largest outflow Courant number sum_faces max(0, phi_out) dt / (eps h) over the cells of every
 /// box (maxAcrossRanks): the upwind part, hence the whole step, is bounded for a value <= 1.
