@@ -420,8 +420,10 @@ void Simulation::rebalanceIfDue() {
   local[extra + 3] = static_cast<double>(owned);
   const std::vector<double> sums = parallel::sumOverRanks(local);
   const double particles = sums[extra + 3], cells = sums[extra + 2];
-  const double perParticle = particles > 0.0 ? sums[extra] / particles : 0.0;
-  const double perCell = cells > 0.0 ? sums[extra + 1] / cells : 0.0;
+  // (parallel.rebalance_cell_cost > 0: a cell weighs that many particles, measured times not used)
+  const bool given = b.cellCost > 0.0;
+  const double perParticle = given ? 1.0 : particles > 0.0 ? sums[extra] / particles : 0.0;
+  const double perCell = given ? b.cellCost : cells > 0.0 ? sums[extra + 1] / cells : 0.0;
   const std::vector<double> work =
       parallel::allgather(perCell * local[extra + 2] + perParticle * local[extra + 3]);
   const double mean = std::accumulate(work.begin(), work.end(), 0.0) / static_cast<double>(work.size());

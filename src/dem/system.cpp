@@ -59,6 +59,12 @@ System::System(Params& root, const Domain& domain, const Vec3& gravity, InitialP
                                  "load of a particle: particles (1 each) or pairs (1 + its neighbour-list pairs, "
                                  "for beds with dense and dilute parts; DEM-only cases)"},
                                 {"particles", "pairs"}, "particles") == "pairs";
+  balance_.cellCost = par.real({"rebalance_cell_cost", "-",
+                                "cases with a fluid: the work of a fluid cell as a number of particles' work; 0 = "
+                                "measured, from the run's time per cell and per particle (the cuts then depend on the "
+                                "machine's speeds)",
+                                Range::nonNegative()},
+                               0.0);
   if (root.documenting()) return;
   updateWalls();
   // A restart skips the initial insertion: load() would discard its particles (a random packing of

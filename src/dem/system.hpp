@@ -45,6 +45,7 @@ struct BalanceSettings {
   double threshold = 1.2;
   long long interval = 1000;  // steps; 0 = never
   bool byPairs = false;       // weight of a particle: 1 (false) or 1 + its neighbour-list pairs
+  double cellCost = 0.0;      // cases with a fluid: a cell's work in particles' worth; 0 = measured
 };
 
 struct ContactStatistics {

@@ -133,7 +133,7 @@ close "$work/column1" "$work/column2" 1e-10 "sedimentation column: periodic x sp
 
 # 5. Load balancing: a suspension in the lower quarter of a column split across its height on 2
 #    ranks puts the particles' work on one rank; rebalancing (threshold 1.1, checked every 40 DEM
-#    steps) moves the cut down, taking at least 20 % of the cells to the other rank, and the
+#    steps, a cell worth 2 particles) moves the cut down, taking at least 20 % of the cells to the other rank, and the
 #    monitors stay within 1e-10 of 1 rank's.
 python3 - "$src/cases/cfddem_batch_sedimentation.yaml" "$work/lopsided_src.yaml" <<'PY'
 import sys, yaml
@@ -142,7 +142,7 @@ c["time"].update(dem_step=1.0e-5, coupling_interval=1)
 c["fluid"]["cells"] = [3, 3, 24]
 c["insertion"][0].update(max=[0.012, 0.012, 0.012], count=6000, size={"distribution": "constant", "diameter": 0.0005})
 c["coupling"]["smoothing_length"] = 0.0015
-c["parallel"] = {"rebalance_threshold": 1.1, "rebalance_interval": 40}
+c["parallel"] = {"rebalance_threshold": 1.1, "rebalance_interval": 40, "rebalance_cell_cost": 2.0}
 yaml.safe_dump(c, open(sys.argv[2], "w"), sort_keys=False)
 PY
 case_for "$work/lopsided_src.yaml" "$work/lopsided.yaml" 0.0016 ""
@@ -150,8 +150,9 @@ case_for "$work/lopsided_src.yaml" "$work/lopsided2.yaml" 0.0016 "1,1,2"
 run 1 "$work/lopsided.yaml" "$work/lopsided1"
 "$mpiexec" --oversubscribe -n 2 "$grainflow" run "$work/lopsided2.yaml" --threads 1 --output "$work/lopsided2" \
   >"$work/lopsided2.log" 2>&1 || { cat "$work/lopsided2.log"; exit 1; }
-# (the cuts follow the measured work, which varies with the machine: the test reads where the
-# last re-cut left the cut across the height, 12 cells up at the start)
+# (a cell weighs 2 particles, parallel.rebalance_cell_cost, so that the cuts do not depend on the
+# machine's speeds: 9 cells and 1,000 particles per plane in the suspension, 9 cells above it put the
+# cut 3 cells up; the test reads where the last re-cut left it, 12 cells up at the start)
 cut=$(sed -n 's/.*cell cuts z: 0 \([0-9]*\) 24).*/\1/p' "$work/lopsided2.log" | tail -n1)
 [[ -n $cut ]] || { echo "FAIL: no rebalancing on 2 ranks"; cat "$work/lopsided2.log"; exit 1; }
 moved=$(( (12 - cut) * 100 / 24 ))
