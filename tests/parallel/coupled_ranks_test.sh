@@ -13,15 +13,10 @@ set -euo pipefail
 grainflow=$1 mpiexec=$2 src=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 OMPI_MCA_mpi_yield_when_idle=1
-
-run() {  # run RANKS CASE OUTPUT [options]
-  local ranks=$1 case=$2 out=$3
-  shift 3
-  "$mpiexec" --oversubscribe -n "$ranks" "$grainflow" run "$case" --quiet --threads 1 --output "$out" "$@"
-}
+source "$(dirname "${BASH_SOURCE[0]}")/rank_runs.sh"
 # case_for SOURCE DESTINATION END LAYOUT: the case with hypre and momentum tolerances of 1e-12,
-# the given end time, monitors 5 times over the run, and domain.decomposition LAYOUT ("" = auto)
+# the given end time, monitors 5 times over the run, and domain.decomposition LAYOUT ("" = auto).
+# (close, rank_runs.sh: the momentum-balance errors, round-off themselves, are left to `balanced`)
 case_for() {
   python3 - "$@" <<'PY'
 import sys, yaml
@@ -37,39 +32,6 @@ for m in c.get("monitors") or []:
     m["interval"] = end / 5
 c.setdefault("output", {})["interval"] = end / 2
 yaml.safe_dump(c, open(dst, "w"), sort_keys=False)
-PY
-}
-# close A B TOLERANCE WHAT: every number of every monitor CSV agrees, relative to the largest
-# magnitude among the columns of the same unit in that file (a vector's components share a scale;
-# a component that is round-off around zero is compared with the vector's size), except the
-# momentum-balance errors, which are round-off themselves (checked by `balanced`)
-close() {
-  python3 - "$1" "$2" "$3" "$4" <<'PY'
-import csv, glob, os, re, sys
-a, b, tol, what = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4]
-worst, where = 0.0, ""
-for fa in sorted(glob.glob(os.path.join(a, "*.csv"))):
-    fb = os.path.join(b, os.path.basename(fa))
-    ra, rb = list(csv.reader(open(fa))), list(csv.reader(open(fb)))
-    times_b = {row[0]: row for row in rb[1:]}
-    pairs = [(row, times_b[row[0]]) for row in ra[1:] if row[0] in times_b]
-    if not pairs or len(pairs) < len(rb) - 1:
-        sys.exit(f"FAIL: {what}: {os.path.basename(fa)}: {len(pairs)} rows of the same times")
-    unit = lambda c: re.sub(r"^.*\[", "[", ra[0][c])
-    scale = {}
-    for c in range(1, len(ra[0])):
-        m = max(abs(float(r[c])) for r in ra[1:])
-        scale[unit(c)] = max(scale.get(unit(c), 0.0), m)
-    for row_a, row_b in pairs:
-        for c in range(1, len(ra[0])):
-            if "momentum_error" in ra[0][c]:
-                continue
-            d = abs(float(row_a[c]) - float(row_b[c])) / max(scale[unit(c)], 1e-300)
-            if d > worst:
-                worst, where = d, f"{os.path.basename(fa)} column {ra[0][c]} at t = {row_a[0]}"
-if worst > tol:
-    sys.exit(f"FAIL: {what}: largest relative difference {worst:.2e} ({where}) > {tol}")
-print(f"ok: {what}: largest relative difference {worst:.2e} ({where or 'none'})")
 PY
 }
 # balanced DIR WHAT: coupling_balance.csv: relative momentum error below 1e-12 and the deposited
@@ -98,8 +60,8 @@ case_for "$bed" "$work/bed3.yaml" 0.001 "1,3,1"
 run 1 "$work/bed.yaml" "$work/bed1"
 run 2 "$work/bed.yaml" "$work/bed2"
 run 4 "$work/bed4.yaml" "$work/bed4"
-close "$work/bed1" "$work/bed2" 1e-10 "bubbling bed: 2 ranks against 1 rank"
-close "$work/bed1" "$work/bed4" 1e-10 "bubbling bed: 4 ranks (1 x 2 x 2) against 1 rank"
+close "$work/bed1" "$work/bed2" 1e-10 "bubbling bed: 2 ranks against 1 rank" momentum_error
+close "$work/bed1" "$work/bed4" 1e-10 "bubbling bed: 4 ranks (1 x 2 x 2) against 1 rank" momentum_error
 for n in 1 2 4; do balanced "$work/bed$n" "bubbling bed on $n rank(s): exchange balance"; done
 
 # 2. Output: one particle piece and one fluid piece per rank.
@@ -114,8 +76,8 @@ echo "ok: coupled output on 4 ranks: 4 particle and 4 fluid pieces per output"
 run 4 "$work/bed4.yaml" "$work/half" --end-time 0.0005
 run 1 "$work/bed.yaml" "$work/on1" --restart "$work/half/checkpoint.bin"
 run 3 "$work/bed3.yaml" "$work/on3" --restart "$work/half/checkpoint.bin"
-close "$work/bed1" "$work/on1" 1e-10 "bubbling bed: 4 ranks to t/2, then 1 rank, against 1 rank throughout"
-close "$work/bed1" "$work/on3" 1e-10 "bubbling bed: 4 ranks to t/2, then 3 ranks, against 1 rank throughout"
+close "$work/bed1" "$work/on1" 1e-10 "bubbling bed: 4 ranks to t/2, then 1 rank, against 1 rank throughout" momentum_error
+close "$work/bed1" "$work/on3" 1e-10 "bubbling bed: 4 ranks to t/2, then 3 ranks, against 1 rank throughout" momentum_error
 
 # 4. A periodic axis split between two ranks: the batch sedimentation column (periodic in x and y)
 #    on a 6 x 6 x 16 grid cut across x, so that deposits and samples wrap through the neighbour.
@@ -129,7 +91,7 @@ case_for "$work/column_src.yaml" "$work/column.yaml" 0.002 ""
 case_for "$work/column_src.yaml" "$work/column2.yaml" 0.002 "2,1,1"
 run 1 "$work/column.yaml" "$work/column1"
 run 2 "$work/column2.yaml" "$work/column2"
-close "$work/column1" "$work/column2" 1e-10 "sedimentation column: periodic x split between 2 ranks against 1 rank"
+close "$work/column1" "$work/column2" 1e-10 "sedimentation column: periodic x split between 2 ranks against 1 rank" momentum_error
 
 # 5. Load balancing: a suspension in the lower quarter of a column split across its height on 2
 #    ranks puts the particles' work on one rank; rebalancing (threshold 1.1, checked every 40 DEM
@@ -159,4 +121,4 @@ moved=$(( (12 - cut) * 100 / 24 ))
 (( moved >= 20 )) ||
   { echo "FAIL: rebalancing moved the cut to $cut ($moved % of the cells; at least 20 expected)"; grep parallel "$work/lopsided2.log"; exit 1; }
 echo "ok: rebalancing on 2 ranks moved the cut from 12 to $cut cells up ($moved % of the cells)"
-close "$work/lopsided1" "$work/lopsided2" 1e-10 "lopsided column: 2 ranks with rebalancing against 1 rank"
+close "$work/lopsided1" "$work/lopsided2" 1e-10 "lopsided column: 2 ranks with rebalancing against 1 rank" momentum_error

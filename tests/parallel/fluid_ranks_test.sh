@@ -9,44 +9,10 @@ set -euo pipefail
 grainflow=$1 mpiexec=$2 src=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 OMPI_MCA_mpi_yield_when_idle=1
-
-run() {  # run RANKS CASE OUTPUT [options]
-  local ranks=$1 case=$2 out=$3
-  shift 3
-  "$mpiexec" --oversubscribe -n "$ranks" "$grainflow" run "$case" --quiet --threads 1 --output "$out" "$@"
-}
-# close A B TOLERANCE WHAT: every number of every monitor CSV agrees (relative to the column's largest
-# magnitude), except the divergence monitors (the pressure solvers' residue, not the solution) and
-# pressure columns (a level the solvers may choose differently)
-close() {
-  python3 - "$1" "$2" "$3" "$4" <<'PY'
-import csv, glob, os, sys
-a, b, tol, what = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4]
-worst, where = 0.0, ""
-for fa in sorted(glob.glob(os.path.join(a, "*.csv"))):
-    if "divergence" in fa:  # (the divergence left by the pressure solvers, not the solution: differs by solver)
-        continue
-    fb = os.path.join(b, os.path.basename(fa))
-    ra, rb = list(csv.reader(open(fa))), list(csv.reader(open(fb)))
-    # rows of the same times (a run restarted into a new directory has the rows from its restart on)
-    times_b = {row[0]: row for row in rb[1:]}
-    pairs = [(row, times_b[row[0]]) for row in ra[1:] if row[0] in times_b]
-    if not pairs or len(pairs) < len(rb) - 1:
-        sys.exit(f"FAIL: {what}: {os.path.basename(fa)}: {len(pairs)} rows of the same times")
-    for row_a, row_b in pairs:
-        for c, (x, y) in enumerate(zip(row_a, row_b)):
-            if ra[0][c].startswith("p ") or ra[0][c].startswith("pressure"):
-                continue  # (closed and periodic domains fix the pressure only up to a constant)
-            x, y = float(x), float(y)
-            scale = max(max(abs(float(r[c])) for r in ra[1:]), 1e-30)
-            if abs(x - y) / scale > worst:
-                worst, where = abs(x - y) / scale, f"{os.path.basename(fa)} column {c}"
-if worst > tol:
-    sys.exit(f"FAIL: {what}: largest relative difference {worst:.2e} ({where}) > {tol}")
-print(f"ok: {what}: largest relative difference {worst:.2e} ({where or 'none'})")
-PY
-}
+source "$(dirname "${BASH_SOURCE[0]}")/rank_runs.sh"
+# (close: the divergence monitors hold the pressure solvers' residue, not the solution, and
+# closed and periodic domains fix the pressure only up to a constant)
+skip='divergence|^p |^pressure'
 
 # 1. Lid-driven cavity (2D, 128 x 128) and the periodic channel at a prescribed flow rate, with the
 #    hypre pressure and momentum tolerances of 1e-12 on every rank count, within 1e-10 between rank
@@ -60,8 +26,8 @@ for name in fluid_cavity fluid_channel; do
   fi
   run 1 "$src/cases/$name.yaml" "$work/${name}_multigrid" --end-time 1.0
   for n in 1 2 4; do run $n "$work/$name.yaml" "$work/${name}$n" --end-time 1.0; done
-  for n in 2 4; do close "$work/${name}1" "$work/${name}$n" 1e-10 "$name: $n ranks against 1 rank (hypre)"; done
-  close "$work/${name}_multigrid" "$work/${name}2" 1e-5 "$name: 2 ranks (hypre) against 1 rank (multigrid)"
+  for n in 2 4; do close "$work/${name}1" "$work/${name}$n" 1e-10 "$name: $n ranks against 1 rank (hypre)" "$skip"; done
+  close "$work/${name}_multigrid" "$work/${name}2" 1e-5 "$name: 2 ranks (hypre) against 1 rank (multigrid)" "$skip"
 done
 
 # 2. Output: one piece per rank in the .pvti of each output, listed by fluid.pvd.
@@ -74,7 +40,7 @@ echo "ok: fluid output on 4 ranks: $(basename "$last") binds 4 pieces"
 #    (hypre on both).
 run 2 "$work/fluid_cavity.yaml" "$work/half" --end-time 0.5
 run 1 "$work/fluid_cavity.yaml" "$work/continued" --end-time 1.0 --restart "$work/half/checkpoint.bin"
-close "$work/fluid_cavity1" "$work/continued" 1e-10 "cavity: 2 ranks to t/2, then 1 rank, against 1 rank throughout"
+close "$work/fluid_cavity1" "$work/continued" 1e-10 "cavity: 2 ranks to t/2, then 1 rank, against 1 rank throughout" "$skip"
 
 # 4. A layout that leaves a rank fewer cells along a split axis than the ghost layers need is
 #    refused before the run (exit 1, invalid case), naming the key and the most ranks that fit.
