@@ -155,10 +155,6 @@ Coupler::Coupler(Params& root, const CartesianGrid& grid, const std::array<bool,
     fd.parcelK = f.real({"parcel_k", "-", "k of the parcel correction c_corr (seed 003 eq. 3.36)", Range::nonNegative()},
                         0.05);
   }
-  if (!s.documenting() && topology_.distributed() && drag_->polydisperse())
-    s.fail("drag_law", settings_.dragLaw + " on " + std::to_string(decomposition->ranks()) + " ranks",
-           "a monodisperse drag law on several ranks (the per-cell size statistics of the polydisperse laws are "
-           "not yet summed across the ranks' cuts), or one rank");
   if (!s.documenting() && settings_.dragCorrection == DragCorrection::Filtered &&
       settings_.dragLaw != "beetstra" && settings_.dragLaw != "beetstra_polydisperse")
     s.fail("drag_correction", "filtered with drag_law: " + settings_.dragLaw,
@@ -745,14 +741,76 @@ void Coupler::updateSizeStatistics(const dem::ParticleSet& particles, bool class
     const double d = 2.0 * particles.radius[p] / cg.factorOf(particles.type[p]);
     known = sizeClasses_.binned() || sizeClasses_.diameters()[static_cast<std::size_t>(sizeClasses_.classOf(d))] == d;
   }
+  if (topology_.distributed()) known = !parallel::anyOverRanks(!known);  // (the same classes on every rank)
   if (!known) {
     std::vector<double> diameters(particles.size());
     for (std::size_t p = 0; p < particles.size(); ++p)
       diameters[p] = 2.0 * particles.radius[p] / cg.factorOf(particles.type[p]);
+    if (topology_.distributed()) diameters = diametersOfAllRanks(std::move(diameters));
     sizeClasses_ = SizeClasses(std::move(diameters));
   }
   computeCellSizeStatistics(topology_, particles, cg, sizeClasses_, sizeStats_, cellOfParticle_, classOfParticle_,
-                            classVelocities);
+                            classVelocities, ghostFlags(particles));
+  if (topology_.distributed()) completeStatisticsAcrossCuts();
+}
+
+void Coupler::completeStatisticsAcrossCuts() {
+  // Each rank summed its own particles into its cells and the ghost cells they reach; the sums in
+  // ghost cells go to their owners (reverse halo, as the deposits), and the owners' complete cells
+  // come back into the ghost cells (a particle near a cut reads its cell's statistics there).
+  CellSizeStatistics& st = sizeStats_;
+  const auto classes = static_cast<std::size_t>(st.classes);
+  const bool classVelocity = !st.classVolumeVelocity.empty();
+  const std::size_t channels = 5 + classes * (classVelocity ? 4 : 1);
+  const std::size_t cells = st.solidVolume.size();
+  if (channelFields_.size() < channels) channelFields_.resize(channels);
+  std::vector<Field*> fields;
+  for (std::size_t ch = 0; ch < channels; ++ch) {
+    if (channelFields_[ch].data().size() != cells) channelFields_[ch] = Field(topology_.grid);
+    fields.push_back(&channelFields_[ch]);
+  }
+  // channel c of cell q: solid volume, volume / diameter, volume velocity (3), class volumes, class
+  // volume velocities (3 per class)
+  auto forEachChannel = [&](auto&& body) {
+    for (std::size_t q = 0; q < cells; ++q) {
+      std::size_t c = 0;
+      body(c++, q, st.solidVolume[q]);
+      body(c++, q, st.volumeOverDiameter[q]);
+      for (int a = 0; a < 3; ++a) body(c++, q, st.volumeVelocity[q][a]);
+      for (std::size_t i = 0; i < classes; ++i) body(c++, q, st.classVolume[q * classes + i]);
+      if (classVelocity)
+        for (std::size_t i = 0; i < classes; ++i)
+          for (int a = 0; a < 3; ++a) body(c++, q, st.classVolumeVelocity[q * classes + i][a]);
+    }
+  };
+  forEachChannel([&](std::size_t c, std::size_t q, double& v) { fields[c]->data()[q] = v; });
+  parallel::sumGhosts(fields, *topology_.decomposition);
+  parallel::fillGhosts(fields, *topology_.decomposition);
+  forEachChannel([&](std::size_t c, std::size_t q, double& v) { v = fields[c]->data()[q]; });
+}
+
+std::vector<double> Coupler::diametersOfAllRanks(std::vector<double> local) {
+  // The distinct diameters of every rank: the classes one rank holding every particle would make
+  // (SizeClasses keeps up to kMaxSizeClasses distinct diameters, else bins between the smallest and
+  // the largest). A rank with more distinct diameters than that sends its smallest, its largest and
+  // as many between as make the union binned over the same range.
+  std::sort(local.begin(), local.end());
+  local.erase(std::unique(local.begin(), local.end()), local.end());
+  constexpr auto kMax = static_cast<std::size_t>(SizeClasses::kMaxSizeClasses);
+  if (local.size() > kMax + 1) {
+    std::vector<double> range(kMax + 1);
+    for (std::size_t k = 0; k <= kMax; ++k) range[k] = local[k * (local.size() - 1) / kMax];
+    local = std::move(range);
+  }
+  parallel::Bytes mine;
+  parallel::Packer pack(mine);
+  for (double d : local) pack.put(d);
+  std::vector<double> all;
+  for (const parallel::Bytes& bytes : parallel::allgather(mine)) {
+    parallel::Unpacker in(bytes);
+    while (!in.done()) all.push_back(in.get<double>());
+  }
+  return all;
 }
 
 const CellSizeStatistics& Coupler::sizeStatistics(dem::ParticleSet& particles) {

@@ -297,7 +297,15 @@ class Coupler {
   const std::uint8_t* ghostFlags(const dem::ParticleSet& particles) const {
     return topology_.distributed() && particles.ghost.size() == particles.size() ? particles.ghost.data() : nullptr;
   }
+  /// Under MPI: the primary diameters of every rank that decide the classes (the same on every
+  /// rank, the classes of one rank holding every particle). Collective.
+  static std::vector<double> diametersOfAllRanks(std::vector<double> local);
+  /// Under MPI: the ghost cells' sums of sizeStats_ added to their owners' cells, then the owners'
+  /// complete cells copied back into the ghost cells.
+  void completeStatisticsAcrossCuts();
   /// Statistics of `particles` into sizeStats_ (classes rebuilt when a diameter is not one of them).
+  /// Under MPI each rank sums its own particles, and the cells are completed across the cuts
+  /// (completeStatisticsAcrossCuts).
   void updateSizeStatistics(const dem::ParticleSet& particles, bool classVelocities = false);
   /// Adds the fluid-mediated particle-particle friction of the law (yin_sundaresan with
   /// fluid_mediated_friction) to the particles' external forces (not exchanged with the fluid).

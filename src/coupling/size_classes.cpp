@@ -36,7 +36,7 @@ int SizeClasses::classOf(double d) const {
 void computeCellSizeStatistics(const GridTopology& topology, const dem::ParticleSet& particles,
                                const CoarseGraining& coarseGraining, const SizeClasses& classes, CellSizeStatistics& out,
                                std::vector<std::size_t>& cellOfParticle, std::vector<int>& classOfParticle,
-                               bool classVelocities) {
+                               bool classVelocities, const std::uint8_t* skip) {
   const CartesianGrid& g = topology.grid;
   const std::size_t cells = static_cast<std::size_t>(g.cells[0] + 2 * g.ghosts) *
                             static_cast<std::size_t>(g.cells[1] + 2 * g.ghosts) *
@@ -61,6 +61,7 @@ void computeCellSizeStatistics(const GridTopology& topology, const dem::Particle
     const int i = classes.classOf(primary);
     cellOfParticle[p] = q;
     classOfParticle[p] = i;
+    if (skip && skip[p]) continue;
     out.solidVolume[q] += volume;
     out.volumeOverDiameter[q] += volume / primary;
     out.volumeVelocity[q] += volume * particles.velocity[p];

@@ -78,10 +78,11 @@ struct CellSizeStatistics {
 
 /// Fills `out` for `particles` (cells: cell-centred fields of `topology`); cellOfParticle[p] is the
 /// flat index of particle p's cell, classOfParticle[p] its class; classVelocities: also
-/// classVolumeVelocity (else left empty).
+/// classVolumeVelocity (else left empty). `skip` (optional, per particle): particles whose entry is
+/// nonzero get their cell and class but add nothing to the sums (MPI ghosts: their owner adds them).
 void computeCellSizeStatistics(const GridTopology& topology, const dem::ParticleSet& particles,
                                const CoarseGraining& coarseGraining, const SizeClasses& classes, CellSizeStatistics& out,
                                std::vector<std::size_t>& cellOfParticle, std::vector<int>& classOfParticle,
-                               bool classVelocities = false);
+                               bool classVelocities = false, const std::uint8_t* skip = nullptr);
 
 }  // namespace gf::coupling
