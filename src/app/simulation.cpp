@@ -235,8 +235,9 @@ void Simulation::checkCouplingInterval() {
 coupling::FluidView Simulation::fluidView() {
   // The coupling reads interior cells only (FluidView, coupler.hpp): no ghost fills; on several
   // ranks also the ghost cells across the cuts, the neighbours' cells (one exchange for the six).
-  fluid_->cellVelocity(fluidVelocity_, fluid::CellGhosts::Left);
-  fluid_->pressureGradient(fluidPressureGradient_, fluid::CellGhosts::Left);
+  const auto ghosts = decomposition_.distributed() ? fluid::CellGhosts::Unexchanged : fluid::CellGhosts::Left;
+  fluid_->cellVelocity(fluidVelocity_, ghosts);
+  fluid_->pressureGradient(fluidPressureGradient_, ghosts);
   if (decomposition_.distributed())
     parallel::fillGhosts({&fluidVelocity_[0], &fluidVelocity_[1], &fluidVelocity_[2], &fluidPressureGradient_[0],
                           &fluidPressureGradient_[1], &fluidPressureGradient_[2]},

@@ -556,7 +556,7 @@ void Solver::cellLinesAndGhosts(const PlaneSlab* slab, Field& out, Line&& line, 
     if (fill) fillCellGhosts(out, bc_, CellGhostKind::ZeroGradient);
     // (a decomposed grid: the ghosts across the cuts are the neighbours' interior cells, which
     // the readers of the interior interpolate near a cut; exchanged with CellGhosts::Left too)
-    else if (bc_.distributed()) parallel::fillGhosts(out, *decomposition_);
+    else if (bc_.distributed() && ghosts == CellGhosts::Left) parallel::fillGhosts(out, *decomposition_);
   }
 }
 

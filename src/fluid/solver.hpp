@@ -41,8 +41,11 @@ struct MomentumRhsPoint;  // fluid/momentum_rhs.hpp
 enum class MomentumModel { A, B };
 enum class ConvectionScheme { Central, VanLeer };
 enum class DrivingMode { None, PressureGradient, FlowRate };
-/// Whether a derived cell field (cellVelocity, pressureGradient) gets its ghost layers filled.
-enum class CellGhosts { Filled, Left };
+/// Whether a derived cell field (cellVelocity, pressureGradient) gets its ghost layers filled:
+/// Filled (boundary values), Left (untouched; on a decomposed grid those across the cuts are
+/// exchanged with the neighbours), Unexchanged (untouched, also across the cuts: the caller
+/// exchanges several fields at once).
+enum class CellGhosts { Filled, Left, Unexchanged };
 
 struct NamedCellField {
   std::string name;
