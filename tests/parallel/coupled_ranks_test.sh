@@ -128,10 +128,9 @@ close "$work/lopsided1" "$work/lopsided2" 1e-10 "lopsided column: 2 ranks with r
 #    beetstra_polydisperse, and with yin_sundaresan plus the fluid-mediated friction between the
 #    classes, on 4 ranks (2 x 1 x 2, across the periodic x and the height) against 1 rank.
 for law in beetstra_polydisperse yin_sundaresan; do
-  python3 - "$src/cases/cfddem_batch_sedimentation.yaml" "$work/${law}_src.yaml" "$law" <<'PY'
+  python3 - "$work/column_src.yaml" "$work/${law}_src.yaml" "$law" <<'PY'
 import sys, yaml
-c = yaml.safe_load(open(sys.argv[1]))
-c["fluid"]["cells"] = [6, 6, 16]
+c = yaml.safe_load(open(sys.argv[1]))  # (the column of section 4)
 c["insertion"][0].update(count=1500, size={"distribution": "discrete", "diameters": [0.0008, 0.001, 0.0012],
                                            "mass_fractions": [0.3, 0.4, 0.3]})
 c["coupling"]["drag_law"] = sys.argv[3]
