@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <numeric>
 #include <atomic>
 #include <chrono>
@@ -160,6 +162,7 @@ void Simulation::synchroniseRanks() const {
 
 Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptions& options)
     : options_(options), caseFile_(caseFile) {
+  if (std::ifstream in{caseFile}; in) caseText_.assign(std::istreambuf_iterator<char>(in), {});
   settings_ = CaseSettings::read(root, caseFile);
   if (options.endTime) settings_.endTime = *options.endTime;
   if (options.outputDirectory) settings_.outputDirectory = *options.outputDirectory;
@@ -498,7 +501,8 @@ void Simulation::rebalanceTo(const parallel::Decomposition& next) {
   const PhaseTimers demTimers = dem_->timers(), fluidTimers = fluid_->timers();
   decomposition_ = next;
   // the DEM, the fluid and the coupling built for the new boxes, as for a restart
-  Params root = Params::loadFile(caseFile_);
+  // (the case as it was read at the start: the file may have been edited since)
+  Params root = caseText_.empty() ? Params::loadFile(caseFile_) : Params::loadString(caseText_, caseFile_);
   dem_ = std::make_unique<dem::System>(root, domain_, settings_.gravity, dem::InitialParticles::FromCheckpoint,
                                        decomposition_);
   fluid_ = std::make_unique<fluid::Solver>(root, domain_, settings_.gravity, decomposition_);
@@ -660,12 +664,15 @@ void Simulation::sampleMonitors(bool force) {
   // monitors that loop over particles read the particles gathered on rank 0.
   dem::ParticleSet gathered;
   if (decomposition_.distributed()) {
-    bool due = force;
-    for (std::size_t m = 0; m < monitors_.size() && !due; ++m)
-      due = s.time + 0.5 * settings_.demStep >= nextMonitorTime_[m];
+    bool due = false, particlesRead = false;  // (the same answer on every rank: times and types only)
+    for (std::size_t m = 0; m < monitors_.size(); ++m)
+      if (force || s.time + 0.5 * settings_.demStep >= nextMonitorTime_[m]) {
+        due = true;
+        particlesRead = particlesRead || monitors_[m].monitor->readsParticles();
+      }
     if (!due) return;
-    gathered = dem_->gatherParticles();
-    s.particles = &gathered;
+    if (particlesRead) gathered = dem_->gatherParticles();
+    s.particles = &gathered;  // (empty where no due monitor reads them)
   }
   const double tolerance = 0.5 * settings_.demStep;
   for (std::size_t m = 0; m < monitors_.size(); ++m) {

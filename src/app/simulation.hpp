@@ -143,6 +143,7 @@ class Simulation {
   std::vector<MonitorSlot> monitors_;
   std::uint64_t fingerprint_ = 0;
   std::string caseFile_;
+  std::string caseText_;  // the case file as read at the start (rebalanceTo builds from it, not from the file now)
   std::string resolvedCaseText_;
 
   long long step_ = 0;

@@ -62,6 +62,9 @@ class Monitor {
   /// The rows written at one sample time, each with the same time: one row, sample()'s, for most
   /// monitors; a profile along a line writes one row per cell (fluid_line_profile).
   virtual std::vector<std::vector<double>> sampleRows(const RunState& state) { return {sample(state)}; }
+  /// Whether sample() reads the particles themselves (monitoredParticles): under MPI they are then
+  /// gathered on rank 0 before the sample. Monitors of fields and of sums the DEM reduces say no.
+  virtual bool readsParticles() const { return true; }
   /// Monitors that accumulate (e.g. mass through a plane) save and restore their state, so a
   /// restarted run writes the same numbers as an uninterrupted one.
   virtual void save(BinaryWriter& out) const {}

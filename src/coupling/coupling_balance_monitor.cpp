@@ -13,6 +13,7 @@ namespace {
 
 class CouplingBalanceMonitor final : public Monitor {
  public:
+  bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit CouplingBalanceMonitor(Params&) {}
   std::vector<MonitorColumn> columns() const override {
     return {{"momentum_error_x", "N"},  {"momentum_error_y", "N"}, {"momentum_error_z", "N"},

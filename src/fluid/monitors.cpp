@@ -23,6 +23,7 @@ int readAxis(Params& p) {
 
 class PressureDropMonitor : public Monitor {
  public:
+  bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit PressureDropMonitor(Params& p)
       : axis_(readAxis(p)),
         first_(p.real({"position_1", "m", "coordinate of the upstream plane along axis"})),
@@ -40,6 +41,7 @@ class PressureDropMonitor : public Monitor {
 
 class FlowRateMonitor : public Monitor {
  public:
+  bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit FlowRateMonitor(Params& p)
       : axis_(readAxis(p)), position_(p.real({"position", "m", "coordinate of the plane along axis"})) {}
   std::vector<MonitorColumn> columns() const override { return {{"flow_rate", "m^3/s"}}; }
@@ -55,6 +57,7 @@ class FlowRateMonitor : public Monitor {
 
 class KineticEnergyMonitor : public Monitor {
  public:
+  bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit KineticEnergyMonitor(Params&) {}
   std::vector<MonitorColumn> columns() const override { return {{"fluid_kinetic_energy", "J"}}; }
   std::vector<double> sample(const RunState& st) override {
@@ -65,6 +68,7 @@ class KineticEnergyMonitor : public Monitor {
 
 class MaxDivergenceMonitor : public Monitor {
  public:
+  bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit MaxDivergenceMonitor(Params&) {}
   std::vector<MonitorColumn> columns() const override {
     return {{"max_divergence", "1/s"}, {"pressure_iterations", "-"}, {"pressure_residual", "-"}};
@@ -78,6 +82,7 @@ class MaxDivergenceMonitor : public Monitor {
 
 class ProbeMonitor : public Monitor {
  public:
+  bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit ProbeMonitor(Params& p) : point_(p.vec3({"probe_point", "m", "probe location"})) {}
   std::vector<MonitorColumn> columns() const override {
     return {{"velocity_x", "m/s"}, {"velocity_y", "m/s"}, {"velocity_z", "m/s"}, {"pressure", "Pa"}};

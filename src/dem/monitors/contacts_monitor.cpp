@@ -6,6 +6,7 @@ namespace gf::dem {
 namespace {
 class ContactsMonitor final : public Monitor {
  public:
+  bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit ContactsMonitor(Params&) {}
   std::vector<MonitorColumn> columns() const override {
     return {{"particle_contacts", "-"}, {"wall_contacts", "-"}, {"coordination_number", "-"},

@@ -6,6 +6,7 @@ namespace gf::dem {
 namespace {
 class KineticEnergyMonitor final : public Monitor {
  public:
+  bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit KineticEnergyMonitor(Params&) {}
   std::vector<MonitorColumn> columns() const override {
     return {{"translational_energy", "J"}, {"rotational_energy", "J"}};

@@ -7,6 +7,7 @@ namespace gf::dem {
 namespace {
 class RemovedMassMonitor final : public Monitor {
  public:
+  bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit RemovedMassMonitor(Params&) {}
   std::vector<MonitorColumn> columns() const override { return {{"removed_mass", "kg"}, {"removed_particles", "-"}}; }
   std::vector<double> sample(const RunState& s) override {

@@ -6,6 +6,7 @@ namespace gf::dem {
 namespace {
 class WallForceMonitor final : public Monitor {
  public:
+  bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit WallForceMonitor(Params& p) : wall_(p.text({"wall", "-", "wall_force: name of the wall"}, "")) {}
   std::vector<MonitorColumn> columns() const override {
     return {{"force_x", "N"}, {"force_y", "N"}, {"force_z", "N"}, {"torque_x", "N m"}, {"torque_y", "N m"},

@@ -12,6 +12,7 @@ namespace {
 
 class DrivingGradientMonitor final : public Monitor {
  public:
+  bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit DrivingGradientMonitor(Params&) {}
   std::vector<MonitorColumn> columns() const override { return {{"driving_gradient", "Pa/m"}}; }
   std::vector<double> sample(const RunState& s) override {

@@ -17,6 +17,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 class LineProfileMonitor final : public Monitor {
  public:
+  bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit LineProfileMonitor(Params& p) {
     const std::string a = p.choice({"line_axis", "-", "fluid_line_profile: direction of the line (one row per cell along it)"},
                                    {"x", "y", "z"});

@@ -16,6 +16,7 @@ namespace {
 
 class PressureDropMonitor final : public Monitor {
  public:
+  bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit PressureDropMonitor(Params& p) {
     const std::string a = p.choice({"flow_axis", "-", "pressure_drop: axis along which the pressure drop is taken"},
                                    {"x", "y", "z"}, "z");

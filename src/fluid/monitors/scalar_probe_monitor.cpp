@@ -15,6 +15,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 class ScalarProbeMonitor final : public Monitor {
  public:
+  bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit ScalarProbeMonitor(Params& p)
       : point_(p.vec3({"probe_point", "m", "fluid_scalar_probe: point whose cell's scalar is reported"})) {}
   std::vector<MonitorColumn> columns() const override {
