@@ -435,34 +435,29 @@ void Simulation::rebalanceIfDue() {
   if (!(before > b.threshold)) return;
   // New cuts per split axis: the planes' work (their cells and particles) in even shares.
   std::array<std::vector<int>, 3> cuts = decomposition_.cellCuts();
+  std::array<std::vector<double>, 3> planeWork;
+  int splitAxes = 0, axis = 0;
   std::size_t base = 0;
   for (int a = 0; a < 3; ++a) {
     const int n = whole.cells[a];
     if (decomposition_.layout()[a] > 1) {
-      const double cellsPerPlane = cells / n;
-      std::vector<double> cost(static_cast<std::size_t>(n));
-      for (int c = 0; c < n; ++c) cost[static_cast<std::size_t>(c)] = perCell * cellsPerPlane + perParticle * sums[base + static_cast<std::size_t>(c)];
+      std::vector<double>& work = planeWork[static_cast<std::size_t>(a)];
+      for (int c = 0; c < n; ++c) work.push_back(perCell * cells / n + perParticle * sums[base + static_cast<std::size_t>(c)]);
       cuts[static_cast<std::size_t>(a)] =
-          parallel::Decomposition::balancedCuts(cost, decomposition_.layout()[a], parallel::kMinCellsPerRank);
+          parallel::Decomposition::balancedCuts(work, decomposition_.layout()[a], parallel::kMinCellsPerRank);
+      ++splitAxes, axis = a;
     }
     base += static_cast<std::size_t>(n);
   }
   // With one split axis the work of the new boxes is known from the planes: a re-cut that would
   // not lower the imbalance by a per cent (whole planes are too coarse) is not made.
-  int splitAxes = 0, axis = 0;
-  for (int a = 0; a < 3; ++a)
-    if (decomposition_.layout()[a] > 1) ++splitAxes, axis = a;
   double after = 0.0;
   if (splitAxes == 1) {
-    std::size_t first = 0;
-    for (int a = 0; a < axis; ++a) first += static_cast<std::size_t>(whole.cells[a]);
     const std::vector<int>& c = cuts[static_cast<std::size_t>(axis)];
-    const double cellsPerPlane = cells / whole.cells[axis];
+    const std::vector<double>& work = planeWork[static_cast<std::size_t>(axis)];
     double largest = 0.0, total = 0.0;
     for (std::size_t k = 0; k + 1 < c.size(); ++k) {
-      double part = 0.0;
-      for (int plane = c[k]; plane < c[k + 1]; ++plane)
-        part += perCell * cellsPerPlane + perParticle * sums[first + static_cast<std::size_t>(plane)];
+      const double part = std::accumulate(work.begin() + c[k], work.begin() + c[k + 1], 0.0);
       largest = std::max(largest, part);
       total += part;
     }
