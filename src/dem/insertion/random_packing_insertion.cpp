@@ -81,24 +81,30 @@ class RandomPackingInsertion final : public Inserter {
     if (parts_ > 1) return insertInParts(ctx, grid, diameters, regionVolume);
     if (solid > kRandomSequentialLimit * regionVolume) return insertOnLattice(ctx, grid, diameters, dMax, solid);
     std::size_t added = 0;
+    placeRandomly(ctx, grid, diameters, min_, max_, added, diameters.size());
+    return added;
+  }
+  /// Random sequential addition of spheres of `diameters` in the box [lo, hi] (centres a radius
+  /// inside it), each placed where it overlaps none already placed; `added` counts the placed
+  /// particles of the `total` asked for (for the message when one cannot be placed).
+  void placeRandomly(InsertionContext& ctx, OverlapGrid& grid, const std::vector<double>& diameters, const Vec3& lo,
+                     const Vec3& hi, std::size_t& added, std::size_t total) {
     for (double d : diameters) {
       const double r = 0.5 * d;
       bool placed = false;
       for (long long a = 0; a < attempts_ && !placed; ++a) {
         Vec3 x;
-        for (int c = 0; c < 3; ++c) x[c] = common_.rng.uniform(min_[c] + r, max_[c] - r);
+        for (int c = 0; c < 3; ++c) x[c] = common_.rng.uniform(lo[c] + r, hi[c] - r);
         if (grid.overlaps(x, r)) continue;
         grid.add(x, r);
         ctx.particles.add(ctx.nextId++, common_.material, r, common_.density, x, common_.velocity);
         placed = true;
       }
       if (!placed)
-        params_.fail(count_ > 0 ? "count" : "volume_fraction",
-                     fmt::format("only {} of {} particles placed", added, diameters.size()),
+        params_.fail(count_ > 0 ? "count" : "volume_fraction", fmt::format("only {} of {} particles placed", added, total),
                      "a larger region or fewer particles (random sequential addition)");
       ++added;
     }
-    return added;
   }
   /// bisected / quadrisectioned (see the file comment).
   std::size_t insertInParts(InsertionContext& ctx, OverlapGrid& grid, const std::vector<double>& diameters,
@@ -133,23 +139,7 @@ class RandomPackingInsertion final : public Inserter {
         params_.fail("initial_distribution",
                      fmt::format("a part with solid fraction {:.3f}", solid[q] / partVolume),
                      "at most 0.25 in each part (random sequential addition): a lower volume_fraction or count");
-      for (double d : dealt[q]) {
-        const double r = 0.5 * d;
-        bool placed = false;
-        for (long long t = 0; t < attempts_ && !placed; ++t) {
-          Vec3 x;
-          for (int c = 0; c < 3; ++c) x[c] = common_.rng.uniform(lo[q][c] + r, hi[q][c] - r);
-          if (grid.overlaps(x, r)) continue;
-          grid.add(x, r);
-          ctx.particles.add(ctx.nextId++, common_.material, r, common_.density, x, common_.velocity);
-          placed = true;
-        }
-        if (!placed)
-          params_.fail(count_ > 0 ? "count" : "volume_fraction",
-                       fmt::format("only {} of {} particles placed", added, diameters.size()),
-                       "a larger region or fewer particles (random sequential addition)");
-        ++added;
-      }
+      placeRandomly(ctx, grid, dealt[q], lo[q], hi[q], added, diameters.size());
     }
     return added;
   }
