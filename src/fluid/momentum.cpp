@@ -366,14 +366,15 @@ void Solver::computeCellDivergence(const PlaneSlab* slab) {
   cellDivergence(u_, cellDivergence_, dims, b, e);
 }
 
-void Solver::computeConvection(Field out[3], const PlaneSlab* slab) {
+void Solver::computeConvection(Field out[3], const PlaneSlab* slab, double rho, double mu) {
   const int dims = twoD_ ? 2 : 3;
+  const double rhoK = rho >= 0.0 ? rho : rho_, muK = mu >= 0.0 ? mu : mu_;
   if (!uniformCoupling_ && !slab) computeCellDivergence(nullptr);
   const bool tvd = scheme_ == ConvectionScheme::VanLeer;
   auto run = [&](auto kernel) {
     for (int c = 0; c < dims; ++c) {
       const auto& pts = u_[c].points();
-      kernel(u_, coupling_.voidFraction, unknown_[c], out[c], c, rho_, mu_, cellDivergence_,
+      kernel(u_, coupling_.voidFraction, unknown_[c], out[c], c, rhoK, muK, cellDivergence_,
              slab ? slab->lineBegin(pts) : 0, slab ? slab->lineEnd(pts) : -1);
     }
   };

@@ -9,6 +9,7 @@
 #include "core/reduction.hpp"
 #include "fluid/loops.hpp"
 #include "fluid/solver.hpp"
+#include "fluid/variable_density.hpp"
 #include "parallel/reductions.hpp"
 
 namespace gf::fluid {
@@ -149,10 +150,14 @@ void Solver::project(double dt, double g0) {
     }
     return false;
   };
-  // Coefficient a / (rho gamma0 eps / dt + K) of the velocity correction at a face.
+  // Coefficient a / (rho gamma0 eps / dt + K) of the velocity correction at a face; with a VOF
+  // mixture rho is the face density of the cells' mixture densities (fluid/variable_density.hpp).
+  const double* RhoCell = vof_ ? rhoCell_.data().data() : nullptr;
   auto correctionCoeff = [&](int a, std::size_t cc) {
     const std::ptrdiff_t se = p_.stride(a);
     const double epsF = avg(E, cc, se);
+    if (RhoCell)
+      return projectionCoefficient(epsF, faceDensity(RhoCell[cc - se], RhoCell[cc]), g0 / dt, avg(K, cc, se), modelA);
     return (modelA ? epsF : 1.0) / (timeCoeff * epsF + avg(K, cc, se));
   };
   // Small grids: the coefficients and the right-hand side in one team region, the correction and
@@ -166,7 +171,7 @@ void Solver::project(double dt, double g0) {
     return slab ? std::pair<std::int64_t, std::int64_t>{slab->lineBegin(points), slab->lineEnd(points)}
                 : std::pair<std::int64_t, std::int64_t>{0, -1};
   };
-  const bool rebuild = !uniformCoupling_ || timeCoeff != poissonKey_;
+  const bool rebuild = !uniformCoupling_ || timeCoeff != poissonKey_ || vof_;
   // Faces of the pressure coefficients (bit 1) and of the velocity correction (bit 2), per
   // velocity point: fixed by the masks and boundary types, so evaluated once.
   if (pressureFaces_[0].size() != u_[0].data().size())
@@ -290,9 +295,15 @@ void Solver::project(double dt, double g0) {
                         : PressureBox::whole(grid_.cells),
                     periodic, T, dirichlet);
     else poisson_.setup(grid_.cells, periodic, T, dirichlet);
-    poissonKey_ = uniformCoupling_ ? timeCoeff : -1.0;
+    poissonKey_ = uniformCoupling_ && !vof_ ? timeCoeff : -1.0;
   }
   // Pressure outlets: phi_b = p_out - p^n_b with p^n_b the interior pressure extrapolated
+  // g.x at the centre of the boundary face of `cell` on side s of axis a.
+  auto outletGravityPotential = [&](int a, int s, const int* cell) {
+    Vec3 x = grid_.cellCentre(cell[0], cell[1], cell[2]);
+    x[a] += (s == 0 ? -0.5 : 0.5) * grid_.spacing[a];
+    return dot(gravity_, x);
+  };
   // linearly to the boundary, so that at convergence the pressure meets p_out there. Cells of the
   // z planes [kBegin, kEnd) only.
   auto forOutletCells = [&](int kBegin, int kEnd, auto&& body) {
@@ -311,7 +322,10 @@ void Solver::project(double dt, double g0) {
             const std::ptrdiff_t inward = (s == 0 ? 1 : -1) * p_.stride(a);
             const double pb = n >= 2 ? 1.5 * p_.data()[cc] - 0.5 * p_.data()[cc + inward] : p_.data()[cc];
             const std::size_t face = s == 0 ? cc : cc + p_.stride(a);  // cell index of the face's + side
-            body(cell, cc, face, inward, bc_.at(a, s).pressure - pb, a);
+            // (VOF: p_ holds p* = p - rho g.x; the outlet's p* with the boundary cell's rho)
+            const double target = RhoCell ? bc_.at(a, s).pressure - RhoCell[cc] * outletGravityPotential(a, s, cell)
+                                          : bc_.at(a, s).pressure;
+            body(cell, cc, face, inward, target - pb, a);
           }
       }
   };
@@ -327,11 +341,12 @@ void Solver::project(double dt, double g0) {
   stats_.pressureIterations = res.iterations;
   stats_.pressureResidual = res.relativeResidual;
   const double* Phi = phi_.data().data();
-  // eps = 1, K = 0: the same coefficient everywhere (no division per face).
+  // eps = 1, K = 0: the same coefficient everywhere (no division per face); not with a mixture.
   const double uniformCoeff = 1.0 / timeCoeff;
   // A team fills the ghosts of phi, u and p in its region, each member those of its planes (the
   // z sides from the first and last two planes: members own >= 2 planes, z not periodic).
   const bool fillInTeam = team > 1 && !bc_.periodic(2) && nz >= 2 * team;
+  const bool uniformCorrection = uniformCoupling_ && !vof_;
   inTeam(projectTeam_[1], [&](const PlaneSlab* slab) {
     // phi = the increment, with its ghosts.
     // (members' own planes, or all on one member)
@@ -370,7 +385,7 @@ void Solver::project(double dt, double g0) {
         for (int i = 0; i < pts[0]; ++i) {
           if (!(PF[i] & 2)) continue;
           const std::size_t cc = e0 + i;
-          const double coeff = uniformCoupling_ ? uniformCoeff : C[i];
+          const double coeff = uniformCorrection ? uniformCoeff : C[i];
           U[i] -= coeff * (Phi[cc] - Phi[cc - se]) * invH;
         }
       });

@@ -117,7 +117,55 @@ double kineticEnergy(const Solver& s) {
     for (int j = 0; j < g.cells[1]; ++j)
       for (int i = 0; i < g.cells[0]; ++i)
         e += eps(i, j, k) * (u[0](i, j, k) * u[0](i, j, k) + u[1](i, j, k) * u[1](i, j, k) + u[2](i, j, k) * u[2](i, j, k));
+  if (s.vofEnabled()) {  // (the mixture density of each cell)
+    const Field& rho = s.mixtureDensity();
+    e = 0.0;
+    for (int k = 0; k < g.cells[2]; ++k)
+      for (int j = 0; j < g.cells[1]; ++j)
+        for (int i = 0; i < g.cells[0]; ++i)
+          e += rho(i, j, k) * eps(i, j, k) *
+               (u[0](i, j, k) * u[0](i, j, k) + u[1](i, j, k) * u[1](i, j, k) + u[2](i, j, k) * u[2](i, j, k));
+    return sumOverRanks(s, 0.5 * e * g.cellVolume());
+  }
   return sumOverRanks(s, 0.5 * s.density() * e * g.cellVolume());
+}
+
+double maxCellSpeed(const Solver& s) {
+  const CartesianGrid& g = s.grid();
+  Field u[3];
+  s.cellVelocity(u);
+  double m = 0.0;
+  for (int k = 0; k < g.cells[2]; ++k)
+    for (int j = 0; j < g.cells[1]; ++j)
+      for (int i = 0; i < g.cells[0]; ++i)
+        m = std::max(m, std::sqrt(u[0](i, j, k) * u[0](i, j, k) + u[1](i, j, k) * u[1](i, j, k) +
+                                  u[2](i, j, k) * u[2](i, j, k)));
+  return maxOverRanks(s, m);
+}
+
+std::vector<double> lineValues(const Solver& s, const Field& f, int axis, const Vec3& point) {
+  const CartesianGrid& G = s.globalGrid();
+  const bool distributed = s.decomposition().distributed();
+  std::vector<double> out;
+  for (int c = 0; c < G.cells[axis]; ++c) {
+    Vec3 x = point;
+    x[axis] = G.origin[axis] + (c + 0.5) * G.spacing[axis];
+    const double part = trilinearPart(s, f, x);
+    out.push_back(distributed ? sumOverRanks(s, part) : part);
+  }
+  return out;
+}
+
+double lastCrossing(const std::vector<double>& position, const std::vector<double>& values, double level) {
+  const std::size_t n = values.size();
+  if (n == 0) return 0.0;
+  const double h = n > 1 ? position[1] - position[0] : 0.0;
+  for (std::size_t c = n - 1; c-- > 0;)
+    if (values[c] >= level && values[c + 1] < level) {
+      const double w = (values[c] - level) / (values[c] - values[c + 1]);
+      return position[c] + w * (position[c + 1] - position[c]);
+    }
+  return values[n - 1] >= level ? position[n - 1] : position[0] - 0.5 * h;
 }
 
 std::array<double, 4> probe(const Solver& s, const Vec3& point) {

@@ -35,6 +35,16 @@ struct LineProfile {
   std::vector<double> voidFraction;              // -
 };
 LineProfile lineProfile(const Solver& s, int axis, const Vec3& point);
+/// A cell field along a grid line as lineProfile: its values at the cell centres along `axis`.
+std::vector<double> lineValues(const Solver& s, const Field& f, int axis, const Vec3& point);
+
+/// Where a profile along a line crosses `level` for the last time going up the axis: the largest
+/// position at which values[c] >= level > values[c + 1], linear between the two cell centres;
+/// the last centre if the profile never falls below, positions[0] - h/2 if it is never at or above.
+double lastCrossing(const std::vector<double>& position, const std::vector<double>& values, double level);
+/// Largest |u| of the cell-centred velocity over the cells (the largest spurious velocity of a
+/// fluid at rest), m/s.
+double maxCellSpeed(const Solver& s);
 
 /// The combination of this rank's part with the other ranks' (collective on a decomposed grid;
 /// the local value on one rank), for the monitors' own sums and extrema.

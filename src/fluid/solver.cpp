@@ -63,6 +63,7 @@ Solver::Solver(Params& root, const Domain& domain, const Vec3& gravity, const pa
   setVelocity(initial.velocity);
   setPressure(initial.pressure);
   setScalar([&](const Vec3&) { return initial.scalar; });
+  readVof(fluid);  // fluid.vof (fluid/vof_step.cpp)
 }
 
 void Solver::readParams(Params& fluid, const Domain& domain) {
@@ -370,6 +371,7 @@ void Solver::step(double dt) {
   // stopping at its first non-uniform value (a boolean: the same answer for any thread count).
   constexpr std::size_t kChunk = 16384;
   const std::size_t chunks = (eps.size() + kChunk - 1) / kChunk;
+  if (vof_) return stepVof(dt);  // several fluids (fluid/vof_step.cpp)
   std::vector<std::uint8_t> chunkUniform(chunks, 1);
   parallelForAbove(static_cast<std::int64_t>(chunks), 8, [&](std::int64_t q) {
     const std::size_t end = std::min(eps.size(), (static_cast<std::size_t>(q) + 1) * kChunk);
@@ -507,7 +509,7 @@ void Solver::pressureGradient(Field out[3], CellGhosts ghosts) const {
       // Raw pointers and a line's base index hoisted; the three differences computed and one
       // selected (the same value as the branches it replaces: every neighbour index is inside the
       // ghost layers; no FP trap is enabled), so the 2-cell lines of a thin bed do not mispredict.
-      const double* const pd = p_.data().data();
+      const double* const pd = (vof_ ? pTotal_ : p_).data().data();  // (VOF: p, not p*)
       const std::uint8_t* const blocked = blocked_.data();
       double* const od = o.data().data();
       const bool zero = twoD_ && c == 2;
@@ -566,7 +568,7 @@ std::vector<NamedCellField> Solver::cellFields() const {
   Field v[3];
   cellVelocity(v);
   for (int c = 0; c < 3; ++c) out.push_back({kComponentNames[c], "m/s", std::move(v[c])});
-  out.push_back({"pressure", "Pa", p_});
+  out.push_back({"pressure", "Pa", pressure()});
   out.push_back({"void_fraction", "-", coupling_.voidFraction});
   if (scalarEnabled_) out.push_back({"scalar", "-", scalar_});
   return out;
@@ -581,6 +583,11 @@ bool Solver::healthyFast() const {
   const int dims = twoD_ ? 2 : 3;
   constexpr double kMax = std::numeric_limits<double>::max();
   unsigned bad = 0;
+  if (vof_) {
+    for (std::size_t i = 0; i < phases_.size(); ++i) out.push_back({"alpha_" + phases_[i].name, "-", alpha_[i]});
+    out.push_back({"mixture_density", "kg/m^3", rhoCell_});
+    out.push_back({"modified_pressure", "Pa", p_});
+  }
   // (After a step the CFL loop below reads every point of the dims components: a NaN or inf
   // there makes its rate NaN or inf, which fails the test as well.)
   for (int c = 0; c < 3; ++c) {
@@ -737,6 +744,11 @@ void Solver::load(BinaryReader& in) {
   steps_ = in.get<long long>();
   drive_ = in.get<double>();
   // The whole grid's arrays (save()); on a decomposed grid this rank takes its box of them.
+  if (vof_) {
+    out.putString("vof-v1");
+    for (const Field& a : alpha_) putField(a);
+    out.putVector(phaseOutflow_);
+  }
   const parallel::Decomposition& d = *decomposition_;
   auto readInto = [&](Field& f) {
     auto v = in.getVector<double>();
@@ -787,3 +799,14 @@ void Solver::load(BinaryReader& in) {
 }
 
 }  // namespace gf::fluid
+  if (vof_) {
+    if (in.getString() != "vof-v1") throw CheckpointError("fluid checkpoint: no phase fractions (fluid.vof)");
+    for (Field& a : alpha_) readInto(a);
+    phaseOutflow_ = in.getVector<double>();
+    if (phaseOutflow_.size() != phases_.size()) throw CheckpointError("fluid checkpoint: phase count differs");
+    const vof::Sides sides = vofSides();
+    std::vector<Field*> fields;
+    for (Field& a : alpha_) fields.push_back(&a);
+    (decomposition_->distributed() ? vof::decomposedFill(*decomposition_, sides) : vof::singleBoxFill(sides))(fields);
+    updateMixture();
+  }

@@ -33,6 +33,7 @@
 #include "fluid/team_tuner.hpp"
 #include "parallel/decomposition.hpp"
 
+#include "vof/vof.hpp"
 namespace gf::fluid {
 
 struct PlaneSlab;         // fluid/loops.hpp
@@ -100,7 +101,9 @@ class Solver {
   /// Cell-centred grad p, including the mean driving gradient (-drivingPressureGradient()) along
   /// the driving axis; ghosts as cellVelocity.
   void pressureGradient(Field out[3], CellGhosts ghosts = CellGhosts::Filled) const;
-  const Field& pressure() const { return p_; }
+  /// The pressure p (with a VOF mixture, fluid.vof: p = p* + rho_f g.x from the solved modified
+  /// pressure p*, seed 002 line 330).
+  const Field& pressure() const { return vof_ ? pTotal_ : p_; }
   void checkHealth(long long step, double time) const;
   void save(BinaryWriter& out) const;
   void load(BinaryReader& in);
@@ -129,6 +132,31 @@ class Solver {
 
   /// Direct-forcing hook (resolved CFD-DEM, src/resolved; seed 000 lines 471-510): called by step()
   /// once, after the momentum predictor and before the pressure projection, with the predicted face
+  // Several immiscible fluids by volume of fluid (fluid.vof; docs/vof.md, fluid/vof_step.cpp).
+  /// fluid.vof is given: the phase fractions are transported and the mixture sets rho and mu.
+  bool vofEnabled() const { return vof_; }
+  int phaseCount() const { return static_cast<int>(phases_.size()); }
+  const std::string& phaseName(int i) const { return phases_[static_cast<std::size_t>(i)].name; }
+  double phaseDensity(int i) const { return phases_[static_cast<std::size_t>(i)].density; }
+  double phaseViscosity(int i) const { return phases_[static_cast<std::size_t>(i)].viscosity; }
+  /// Index of the phase called `name`, -1 if none.
+  int phaseIndex(const std::string& name) const;
+  /// Fraction alpha_i of phase i (cell field of this rank's box, ghosts filled).
+  const Field& phaseFraction(int i) const { return alpha_[static_cast<std::size_t>(i)]; }
+  /// Mixture density and viscosity of the cells (seed 002 eqs. 3-4), of the fractions at the end
+  /// of the last step (ghosts filled).
+  const Field& mixtureDensity() const { return rhoCell_; }
+  const Field& mixtureViscosity() const { return muCell_; }
+  /// Volume of phase i that has left through the open sides since the start (m^3, all ranks).
+  double phaseOutflowVolume(int i) const { return phaseOutflow_[static_cast<std::size_t>(i)]; }
+  /// Its rate over the last step (m^3/s).
+  double phaseOutflowRate(int i) const { return phaseOutflowRate_[static_cast<std::size_t>(i)]; }
+  /// Substeps of the phase transport in the last step.
+  int vofSubsteps() const { return vofSubsteps_; }
+  /// Fill the phase fractions from a function of position (the phase of each cell centre), and
+  /// the mixture fields from them (tests; the case file's fluid.vof.regions does the same).
+  void setPhases(const std::function<int(const Vec3&)>& phaseAt);
+
   /// velocities of this rank's box (u-hat, which the hook may overwrite with u-tilde), the step and
   /// the BDF coefficient gamma0 of the time derivative (a change du of a face velocity is the body
   /// force rho gamma0 du / dt). The projection then makes the forced field divergence-free. With
@@ -152,7 +180,9 @@ class Solver {
   // momentum.cpp
   /// slab: only the grid lines of that team member (the cell divergence computed before); null:
   /// all lines, cell divergence included, threaded loop by loop.
-  void computeConvection(Field out[3], const PlaneSlab* slab = nullptr);
+  /// rho, mu >= 0: the density and viscosity the kernels take instead of the fluid's (the VOF
+  /// step's convection per unit density, without the eps-varying viscous rest).
+  void computeConvection(Field out[3], const PlaneSlab* slab = nullptr, double rho = -1.0, double mu = -1.0);
   void computeCellDivergence(const PlaneSlab* slab);
   /// A team member's share of computeConvection + assembleMomentum (all components) in one pass,
   /// with |b|^2 per grid line into partial[c] (momentum_team.cpp).
@@ -189,6 +219,15 @@ class Solver {
   }
   // projection.cpp
   void balanceOutflow(double dt);
+  // vof_step.cpp
+  void readVof(Params& fluid);
+  /// step() with a VOF mixture: explicit predictor with rho_f, mu_f and the buoyancy face force,
+  /// projection with 1/rho_f, then the phase transport with the projected fluxes.
+  void stepVof(double dt);
+  void predictMomentumVof(double dt);
+  void transportPhases(double dt);
+  void updateMixture();
+  vof::Sides vofSides() const;
   void project(double dt, double gamma0);
   void controlFlowRate(double dt, double gamma0);
   double correctMomentum(double dt, double gamma0);
@@ -289,3 +328,20 @@ class Solver {
 };
 
 }  // namespace gf::fluid
+
+  // VOF (fluid.vof; fluid/vof_step.cpp). Empty / false: the single-fluid solver.
+  struct VofPhase {
+    std::string name;
+    double density = 1000.0, viscosity = 1e-3;
+  };
+  bool vof_ = false;
+  std::vector<VofPhase> phases_;
+  std::vector<Field> alpha_;          // phase fractions (cell fields)
+  Field rhoCell_, muCell_, pTotal_;   // mixture rho, mu; p = p* + rho g.x (p_ holds p*)
+  Field vofEps_, vofFlux_[3];         // eps at the start of the transport, eps_f u_f per axis
+  vof::PhaseTransport transport_;
+  vof::TransportSettings vofSettings_;
+  double vofCourant_ = 0.5;
+  int vofInflowPhase_ = 0;
+  int vofSubsteps_ = 0;
+  std::vector<double> phaseOutflow_, phaseOutflowRate_;

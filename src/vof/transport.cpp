@@ -341,7 +341,7 @@ void advance(PhaseTransport& work, std::vector<Field>& alpha, const Field& eps, 
 
 int advanceSubcycled(PhaseTransport& work, std::vector<Field>& alpha, const Field& eps, const std::array<const Field*, 3>& flux,
                      double dt, const Sides& sides, const TransportSettings& settings, const GhostFill& fill,
-                     double courantLimit) {
+                     double courantLimit, const std::function<void(double substep)>& afterSubstep) {
   if (!(courantLimit > 0.0 && courantLimit <= 1.0)) throw std::invalid_argument("vof: the substeps' Courant limit must lie in (0, 1]");
   // eps at the end of the step (seed 002 eq. 5), for the Courant number where the bed fills up
   const CartesianGrid& g = eps.grid();
@@ -363,6 +363,7 @@ int advanceSubcycled(PhaseTransport& work, std::vector<Field>& alpha, const Fiel
   Field e(eps);
   for (int k = 0; k < substeps; ++k) {
     advance(work, alpha, e, flux, h, sides, settings, fill);
+    if (afterSubstep) afterSubstep(h);
     if (k + 1 < substeps) {
       e.data() = work.transportedVoidFraction().data();
       fill({&e});

@@ -111,9 +111,11 @@ void advance(PhaseTransport& work, std::vector<Field>& alpha, const Field& eps, 
 /// same on every rank. Each substep starts from the previous one's transported void fraction eps*
 /// (ghosts filled by `fill`), so eps goes linearly from eps to eps - dt div(phi) and every phase
 /// stays conserved (MULES' sub-cycling, nAlphaSubCycles, chosen from the Courant number). Returns m.
+/// afterSubstep(h), if given, runs after each substep of length h (boundaryOutflow of that substep).
 int advanceSubcycled(PhaseTransport& work, std::vector<Field>& alpha, const Field& eps,
                      const std::array<const Field*, 3>& flux, double dt, const Sides& sides,
-                     const TransportSettings& settings, const GhostFill& fill, double courantLimit = 0.5);
+                     const TransportSettings& settings, const GhostFill& fill, double courantLimit = 0.5,
+                     const std::function<void(double substep)>& afterSubstep = {});
 
 /// The ghost fill of one box with no neighbours (fillCellGhosts with `sides` on every field).
 GhostFill singleBoxFill(const Sides& sides);

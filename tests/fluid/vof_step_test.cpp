@@ -1,0 +1,175 @@
+// The fluid step with a VOF mixture (fluid.vof; src/fluid/vof_step.cpp, docs/vof.md): the
+// hydrostatic balance across a 1000:1 density jump, the variable-viscosity stress against
+// two-layer Couette flow, the conservation and bounds of a collapsing column, and the case-file
+// errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "core/error.hpp"
+#include "fluid/sampling.hpp"
+#include "fluid/solver.hpp"
+#include "fluid_test_util.hpp"
+#include "parallel/reductions.hpp"
+#include "vof/vof.hpp"
+
+namespace gf::fluid {
+namespace {
+
+using test::makeCase;
+
+constexpr double kG = 9.81;
+
+/// Air over water in a 2D tank (x, y; gravity along -y), water below y = level.
+std::string tankCase(int nx, int ny, double level, const std::string& top) {
+  return "domain: {min: [0, 0, 0], max: [0.1, 0.2, 0.005]}\n"
+         "fluid:\n"
+         "  cells: [" + std::to_string(nx) + ", " + std::to_string(ny) + ", 1]\n"
+         "  pressure: {tolerance: 1.0e-12, max_iterations: 200}\n"
+         "  vof:\n"
+         "    phases:\n"
+         "      - {name: air, density: 1.0, viscosity: 1.8e-5}\n"
+         "      - {name: water, density: 1000.0, viscosity: 1.0e-3}\n"
+         "    regions:\n"
+         "      - {phase: water, min: [0, 0, 0], max: [0.1, " + std::to_string(level) + ", 1]}\n"
+         "  boundaries:\n"
+         "    y_max: " + top + "\n";
+}
+
+// A column at rest with a 1000:1 jump stays at rest: the buoyancy face force -(g.x)_f d rho/dy
+// and the gradient of the modified pressure share the face coefficient, and the projection with
+// 1/rho_f finds the p* that cancels it (balanced force). The pressure p = p* + rho g.x at the
+// bottom cell is the discrete rho g h of the two layers above it.
+TEST(VofStep, HydrostaticColumnWithDensityJumpStaysAtRest) {
+  for (const std::string top : {"{type: pressure_outlet, pressure: 0.0}", "{type: wall}"}) {
+    auto c = makeCase(tankCase(10, 40, 0.1, top), Vec3{0.0, -kG, 0.0});
+    Solver& s = *c.solver;
+    ASSERT_TRUE(s.vofEnabled());
+    for (int n = 0; n < 50; ++n) s.step(1e-3);
+    EXPECT_LT(maxCellSpeed(s), 1e-9) << top;
+    // (the interface lies on a face: alpha stays exactly 0 or 1)
+    const auto range = vof::fractionRange(s.phaseFraction(1));
+    EXPECT_GE(range[0], 0.0);
+    EXPECT_LE(range[1], 1.0);
+    if (top.find("outlet") != std::string::npos) {
+      // Bottom cell centre at y = h/2: water 0.1 - h/2 above it, air 0.1 above that (p = 0 at the top).
+      const double h = 0.2 / 40;
+      const double exact = 1000.0 * kG * (0.1 - 0.5 * h) + 1.0 * kG * 0.1;
+      EXPECT_NEAR(s.pressure()(5, 0, 0), exact, 1e-9 * exact);
+    }
+  }
+}
+
+// The interface inside a cell (alpha = 1/2 in one row) still stays at rest: the mixture row has
+// its own rho, and every face between two rows balances with the face density.
+TEST(VofStep, HydrostaticColumnWithMixedCellStaysAtRest) {
+  auto c = makeCase(tankCase(4, 40, 0.1, "{type: pressure_outlet, pressure: 0.0}"), Vec3{0.0, -kG, 0.0});
+  Solver& s = *c.solver;
+  // water below row 19, half water in row 20 (y in [0.1, 0.105))
+  s.setPhases([](const Vec3& x) { return x.y < 0.1 ? 1 : 0; });
+  for (int n = 0; n < 20; ++n) s.step(1e-3);
+  EXPECT_LT(maxCellSpeed(s), 1e-9);
+}
+
+// Steady Couette flow of two layers (mu 1 below y = 1/2, mu 1/4 above; same density): the shear
+// stress tau = U / (1/(2 mu1) + 1/(2 mu2)) is the same in both, so u is piecewise linear. The
+// explicit stress with the four-cell edge viscosity is exact away from the interface row and
+// first order at it: max error 1.7 % of U at 16 rows, 0.88 % at 32.
+TEST(VofStep, TwoLayerCouetteWithVariableViscosity) {
+  double previous = 0.0;
+  for (int ny : {16, 32}) {
+    const std::string yaml =
+        "domain: {min: [0, 0, 0], max: [" + std::to_string(2.0 / ny) + ", 1.0, " + std::to_string(1.0 / ny) +
+        "], periodic: [1, 0, 0]}\n"
+        "fluid:\n"
+        "  cells: [2, " + std::to_string(ny) + ", 1]\n"
+        "  pressure: {tolerance: 1.0e-12}\n"
+        "  vof:\n"
+        "    phases:\n"
+        "      - {name: thin, density: 1.0, viscosity: 0.25}\n"
+        "      - {name: thick, density: 1.0, viscosity: 1.0}\n"
+        "    regions:\n"
+        "      - {phase: thick, min: [0, 0, 0], max: [1, 0.5, 1]}\n"
+        "  boundaries:\n"
+        "    y_max: {type: wall, velocity: [1.0, 0.0, 0.0]}\n";
+    auto c = makeCase(yaml);
+    Solver& s = *c.solver;
+    const double h = 1.0 / ny;
+    const double dt = 0.2 * h * h;  // diffusion number 0.2 with mu/rho = 1
+    for (double t = 0.0; t < 4.0; t += dt) s.step(dt);
+    std::printf("two-layer Couette, %d rows: ", ny);
+    const double tau = 1.0 / (0.5 / 1.0 + 0.5 / 0.25);
+    double err = 0.0;
+    for (int j = 0; j < ny; ++j) {
+      const double y = (j + 0.5) * h;
+      const double exact = y < 0.5 ? tau * y : tau * 0.5 + tau / 0.25 * (y - 0.5);
+      err = std::max(err, std::abs(s.velocity(0)(0, j, 0) - exact));
+    }
+    std::printf("max |u - exact| = %.3e\n", err);
+    EXPECT_LT(err, 0.02) << ny;
+    if (previous > 0.0) {
+      EXPECT_LT(err, 0.6 * previous);
+    }
+    previous = err;
+  }
+}
+
+// A collapsing column (dam break, coarse): every phase keeps its volume to round-off and the
+// fractions their bounds while the fluid moves at up to 1 m/s.
+TEST(VofStep, CollapsingColumnConservesPhasesAndBounds) {
+  const std::string yaml =
+      "domain: {min: [0, 0, 0], max: [0.2, 0.1, 0.005]}\n"
+      "fluid:\n"
+      "  cells: [40, 20, 1]\n"
+      "  pressure: {tolerance: 1.0e-10}\n"
+      "  vof:\n"
+      "    phases:\n"
+      "      - {name: air, density: 1.2, viscosity: 1.8e-5}\n"
+      "      - {name: water, density: 1000.0, viscosity: 1.0e-3}\n"
+      "    regions:\n"
+      "      - {phase: water, min: [0, 0, 0], max: [0.05, 0.08, 1]}\n";
+  auto c = makeCase(yaml, Vec3{0.0, -kG, 0.0});
+  Solver& s = *c.solver;
+  const parallel::RankReductionScope ranks(s.decomposition());
+  const Field& eps = s.couplingFields().voidFraction;
+  const double v0 = vof::phaseVolume(s.phaseFraction(1), eps), a0 = vof::phaseVolume(s.phaseFraction(0), eps);
+  for (int n = 0; n < 200; ++n) s.step(5e-4);
+  EXPECT_GT(maxCellSpeed(s), 0.5);
+  EXPECT_NEAR(vof::phaseVolume(s.phaseFraction(1), eps), v0, 1e-12 * v0);
+  EXPECT_NEAR(vof::phaseVolume(s.phaseFraction(0), eps), a0, 1e-12 * a0);
+  for (int i = 0; i < 2; ++i) {
+    const auto range = vof::fractionRange(s.phaseFraction(i));
+    EXPECT_GE(range[0], -1e-12);
+    EXPECT_LE(range[1], 1.0 + 1e-12);
+  }
+  EXPECT_LT(vof::maxSumError({s.phaseFraction(0), s.phaseFraction(1)}), 1e-12);
+}
+
+// Bad input names the key and what was expected.
+TEST(VofStep, CaseFileErrors) {
+  auto message = [](const std::string& vof) {
+    try {
+      makeCase("domain: {min: [0, 0, 0], max: [1, 1, 1]}\nfluid:\n  cells: [4, 4, 4]\n  vof:\n" + vof);
+    } catch (const CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("    phases:\n      - {name: water, density: 1000, viscosity: 1e-3}\n").find("at least two phases"),
+            std::string::npos);
+  const std::string two = "    phases:\n      - {name: air, density: 1.2, viscosity: 1.8e-5}\n"
+                          "      - {name: water, density: 1000, viscosity: 1e-3}\n";
+  const std::string bad = message(two + "    regions:\n      - {phase: oil, min: [0, 0, 0], max: [1, 1, 1]}\n");
+  EXPECT_NE(bad.find("oil"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("air, water"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("regions"), std::string::npos) << bad;
+  EXPECT_NE(message("    phases:\n      - {name: a, density: 1, viscosity: 0}\n      - {name: a, density: 2, viscosity: 0}\n")
+                .find("used twice"),
+            std::string::npos);
+  EXPECT_NE(message(two + "    courant: 1.5\n").find("courant"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace gf::fluid
