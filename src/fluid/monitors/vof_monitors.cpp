@@ -1,6 +1,7 @@
 // Monitors of a run with several fluids (fluid.vof; docs/vof.md):
 //   phase_mass          mass of one phase in the domain, its outflow through the open sides (rate
-//                       and total) and the balance mass + outflow - initial mass, relative
+//                       and total), the balance mass + outflow - initial mass (relative), and the
+//                       smallest and largest fraction of the phase in a cell
 //   interface_position  where a phase's fraction crosses 1/2 for the last time along a grid line
 //                       (free-surface height on a vertical line, the front of a dam break on a
 //                       horizontal one)
@@ -38,10 +39,11 @@ class PhaseMassMonitor final : public Monitor {
   bool readsParticles() const override { return false; }  // (fields and reduced sums only)
   explicit PhaseMassMonitor(Params& p) : phase_(p, "phase_mass, interface_position: name of the phase (fluid.vof.phases)") {}
   std::vector<MonitorColumn> columns() const override {
-    return {{"mass", "kg"}, {"outflow_rate", "kg/s"}, {"outflow", "kg"}, {"balance_error", "-"}};
+    return {{"mass", "kg"},          {"outflow_rate", "kg/s"}, {"outflow", "kg"},
+            {"balance_error", "-"}, {"fraction_min", "-"},    {"fraction_max", "-"}};
   }
   std::vector<double> sample(const RunState& s) override {
-    if (!s.fluid || !s.fluid->vofEnabled()) return {kNaN, kNaN, kNaN, kNaN};
+    if (!s.fluid || !s.fluid->vofEnabled()) return {kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};
     const Solver& f = *s.fluid;
     const int i = phase_.index(f);
     const double rho = f.phaseDensity(i);
@@ -53,7 +55,8 @@ class PhaseMassMonitor final : public Monitor {
       started_ = true;
     }
     const double error = initial_ > 0.0 ? (mass + out - initial_) / initial_ : 0.0;
-    return {mass, rho * f.phaseOutflowRate(i), out, error};
+    const auto range = vof::fractionRange(f.phaseFraction(i));
+    return {mass, rho * f.phaseOutflowRate(i), out, error, range[0], range[1]};
   }
   void save(BinaryWriter& out) const override {
     out.put(started_);
