@@ -137,6 +137,17 @@ double minIncrement(const std::vector<double>& x, const std::vector<double>& y) 
   return smallest;
 }
 
+double gapClosed(const std::vector<double>& x, const std::vector<double>& y) {
+  if (x.size() < 3 || x.size() != y.size()) throw std::invalid_argument("the gap closed needs at least three points");
+  std::vector<std::size_t> order(x.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
+  const double last = y[order.back()];
+  const double gap = std::abs(y[order[0]] - last);
+  if (!(gap > 0.0)) throw std::invalid_argument("the first run equals the last: no gap to close");
+  return 1.0 - std::abs(y[order[1]] - last) / gap;
+}
+
 Comparison compareValue(double computed, double reference, const Tolerance& tolerance) {
   Comparison c{reference, computed, computed - reference, false};
   if (tolerance.lowerBound) {

@@ -51,6 +51,12 @@ double richardsonOrder(const std::vector<double>& x, const std::vector<double>& 
 /// strictly with x); needs >= 2 points.
 double minIncrement(const std::vector<double>& x, const std::vector<double>& y);
 
+/// Points ordered by x (equal x keep their order): the share of the first point's distance from the
+/// last that the second closes, 1 - |y2 - y_last| / |y1 - y_last| (1: the second equals the last;
+/// > 0: the second is closer to the last than the first, e.g. a correction on a coarse grid against
+/// the fine grid); needs >= 3 points and y1 != y_last.
+double gapClosed(const std::vector<double>& x, const std::vector<double>& y);
+
 struct Tolerance {
   double value = 0.0;
   bool relative = false;    // relative to |reference|; for curves to max |reference|

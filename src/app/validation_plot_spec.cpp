@@ -119,6 +119,7 @@ Panel plotPanel(const Item& item, const Quantity& q, const std::vector<RunPoint>
                           q.across == AcrossRuns::LogLogSlope       ? "observed log-log slope"
                           : q.across == AcrossRuns::RichardsonOrder ? "observed order (last three runs)"
                           : q.across == AcrossRuns::MinIncrement    ? "smallest increase between runs"
+                          : q.across == AcrossRuns::GapClosed       ? "share of the first run's gap to the last closed by the second"
                           : r.runLabel.empty()                      ? q.name
                                                                     : r.runLabel,
                           r.comparison->computed, r.comparison->reference, q.operation == Operation::Curve ? " (worst point)" : "");
@@ -159,7 +160,7 @@ Panel plotPanel(const Item& item, const Quantity& q, const std::vector<RunPoint>
         for (double x : computed.x) slope.y.push_back(computed.y.front() * std::pow(x / computed.x.front(), p));
         series.push_back(slope);
       }
-    } else if (q.across == AcrossRuns::MinIncrement) {
+    } else if (q.across == AcrossRuns::MinIncrement || q.across == AcrossRuns::GapClosed) {
       // the values themselves; no reference line (the bound is on their differences)
     } else if (q.across == AcrossRuns::LogLogSlope && computed.x.size() >= 1 && q.reference.value) {
       PlotSeries slope{fmt::format("slope {:g} ({})", *q.reference.value, q.plot.referenceLabel), "dashed", true, computed.x, {}};

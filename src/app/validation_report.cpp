@@ -214,6 +214,7 @@ void writeDocs(const std::string& docsDirectory, const std::string& repository, 
       const std::string across = q.across == AcrossRuns::LogLogSlope       ? ", log-log slope over the runs"
                                  : q.across == AcrossRuns::RichardsonOrder ? ", observed order from the last three runs (Richardson)"
                                  : q.across == AcrossRuns::MinIncrement    ? ", smallest increase between the runs"
+                                 : q.across == AcrossRuns::GapClosed       ? ", share of the first run's distance from the last closed by the second"
                                                                            : "";
       const std::string quick = q.quickTolerance ? fmt::format("; tolerance in --quick mode {}", formatTolerance(*q.quickTolerance)) : "";
       if (q.operation == Operation::Profile)

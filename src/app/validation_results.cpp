@@ -137,6 +137,7 @@ std::vector<Row> compareQuantity(const Item& item, const Quantity& q, const std:
     try {
       const double computed = q.across == AcrossRuns::LogLogSlope       ? logLogSlope(xs, ys)
                               : q.across == AcrossRuns::RichardsonOrder ? richardsonOrder(xs, ys)
+                              : q.across == AcrossRuns::GapClosed       ? gapClosed(xs, ys)
                                                                         : minIncrement(xs, ys);
       row.comparison = compareValue(computed, *q.reference.value, q.tolerance);
     } catch (const std::invalid_argument& e) {

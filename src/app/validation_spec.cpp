@@ -37,7 +37,8 @@ const std::vector<std::pair<std::string, AcrossRuns>>& acrossRunsNames() {
   static const std::vector<std::pair<std::string, AcrossRuns>> names = {{"none", AcrossRuns::None},
                                                                          {"loglog_slope", AcrossRuns::LogLogSlope},
                                                                          {"richardson_order", AcrossRuns::RichardsonOrder},
-                                                                         {"min_increment", AcrossRuns::MinIncrement}};
+                                                                         {"min_increment", AcrossRuns::MinIncrement},
+                                                                         {"gap_closed", AcrossRuns::GapClosed}};
   return names;
 }
 
@@ -437,7 +438,9 @@ Item loadItem(const std::string& directory) {
   }
   for (std::size_t i = 0; i < item.quantities.size(); ++i) {
     const Quantity& q = item.quantities[i];
-    const std::size_t needed = q.across == AcrossRuns::RichardsonOrder ? 3 : q.across == AcrossRuns::None ? 0 : 2;
+    const std::size_t needed = q.across == AcrossRuns::RichardsonOrder || q.across == AcrossRuns::GapClosed ? 3
+                                : q.across == AcrossRuns::None                                              ? 0
+                                                                                                            : 2;
     for (const auto* runs : {&item.runs, &item.quickRuns}) {
       const std::string which = runs == &item.runs ? "sweep.values" : "sweep.quick_values";
       if (runs->size() < needed)

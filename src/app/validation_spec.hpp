@@ -28,8 +28,9 @@ struct RunPoint {
 /// long-format CSV (fluid_line_profile), compared at each reference point.
 enum class Operation { Final, Initial, Min, Max, Mean, ValueAt, FirstCrossing, DurationAbove, Ratio, Curve, Profile };
 /// One comparison for a whole sweep: log-log slope, observed (Richardson) order of the last three
-/// runs, or the smallest increase between consecutive runs.
-enum class AcrossRuns { None, LogLogSlope, RichardsonOrder, MinIncrement };
+/// runs, the smallest increase between consecutive runs, or the share of the first run's distance
+/// from the last that the second run closes.
+enum class AcrossRuns { None, LogLogSlope, RichardsonOrder, MinIncrement, GapClosed };
 /// Name in validation.yaml <-> across-runs kind.
 const std::vector<std::pair<std::string, AcrossRuns>>& acrossRunsNames();
 std::string acrossRunsName(AcrossRuns a);

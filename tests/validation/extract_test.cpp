@@ -96,6 +96,16 @@ TEST(Extract, MinIncrementOrdersByTheSweptValue) {
   EXPECT_THROW(minIncrement({0.1}, {1.0}), std::invalid_argument);
 }
 
+TEST(Extract, GapClosedOrdersByTheSweptValue) {
+  // coarse 0.63, coarse corrected 0.71, fine 0.69: the correction closes 1 - 0.02 / 0.06 of the gap
+  EXPECT_NEAR(gapClosed({4, 4, 16}, {0.63, 0.71, 0.69}), 1.0 - 0.02 / 0.06, 1e-12);
+  EXPECT_NEAR(gapClosed({16, 4, 4}, {0.69, 0.63, 0.71}), 1.0 - 0.02 / 0.06, 1e-12);  // equal x keep their order
+  EXPECT_LT(gapClosed({4, 4, 16}, {0.63, 0.80, 0.69}), 0.0);                         // overshoots: farther
+  EXPECT_NEAR(gapClosed({4, 4, 16}, {0.63, 0.63, 0.69}), 0.0, 1e-12);                // no effect
+  EXPECT_THROW(gapClosed({4, 16}, {0.63, 0.69}), std::invalid_argument);
+  EXPECT_THROW(gapClosed({4, 4, 16}, {0.69, 0.7, 0.69}), std::invalid_argument);     // no gap
+}
+
 TEST(Extract, CompareValueLowerBound) {
   Tolerance bound;
   bound.lowerBound = true;
