@@ -376,20 +376,23 @@ TEST(PolydisperseCoupling, AutoSmoothingLengthIsChosenFromTheParticlesAndPrinted
 
 TEST(PolydisperseCoupling, OneParticleSizeWarnsThatThePolydisperseLawReducesToMonodisperse) {
   const CartesianGrid g = makeGrid({3, 3, 3}, {1e-3, 1e-3, 1e-3});
-  auto coupler = makeCoupler("  drag_law: beetstra_polydisperse\n", g);
-  dem::ParticleSet s = randomParticles(20, 40e-6, 40e-6, {0, 0, 0}, {3e-3, 3e-3, 3e-3});
-  FluidFields fluid(g);
-  CouplingFields fields(g);
-  std::ostringstream log;
-  const auto previous = spdlog::default_logger();
-  spdlog::set_default_logger(
-      std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
-  coupler->computeVoidFraction(s, fields);
-  coupler->computeParticleForces(fluid.view(0.804, 2.444e-5), fields, s);
-  spdlog::set_default_logger(previous);
-  EXPECT_NE(log.str().find("reduces to its monodisperse form"), std::string::npos) << log.str();
-  // y = 1 everywhere: the monodisperse form, beetstra x (1 + 0.064 eps) (beetstra_polydisperse.hpp)
-  EXPECT_EQ(coupler->sizeClasses().count(), 1);
+  for (const std::string law : {"beetstra_polydisperse", "yin_sundaresan"}) {
+    auto coupler = makeCoupler("  drag_law: " + law + "\n", g);
+    dem::ParticleSet s = randomParticles(20, 40e-6, 40e-6, {0, 0, 0}, {3e-3, 3e-3, 3e-3});
+    FluidFields fluid(g);
+    CouplingFields fields(g);
+    std::ostringstream log;
+    const auto previous = spdlog::default_logger();
+    spdlog::set_default_logger(
+        std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
+    coupler->computeVoidFraction(s, fields);
+    coupler->computeParticleForces(fluid.view(0.804, 2.444e-5), fields, s);
+    spdlog::set_default_logger(previous);
+    EXPECT_NE(log.str().find("drag_law " + law + " with particles of one size"), std::string::npos) << log.str();
+    EXPECT_NE(log.str().find("reduces to its monodisperse form"), std::string::npos) << log.str();
+    // y = 1 everywhere: the monodisperse form (beetstra_polydisperse: beetstra x (1 + 0.064 eps))
+    EXPECT_EQ(coupler->sizeClasses().count(), 1);
+  }
 }
 
 // Seed 003 Tab. 4.16: the alpha = 33 boxes of the riser's mean cells (parcel d32 = 33 x 6.80 um) got
