@@ -168,6 +168,7 @@ Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptio
   if (options.outputDirectory) settings_.outputDirectory = *options.outputDirectory;
   domain_ = Domain::read(root);
   decomposition_ = decompositionOf(root, domain_);
+  if (!rootRank()) options_.quiet = true;  // (under MPI only rank 0 prints progress lines)
   // A restart brings its particles from the checkpoint (prepare()): no initial insertion; the
   // coupling-interval check, which needs the particles, runs after the restore.
   const auto initial = options.restartFile ? dem::InitialParticles::FromCheckpoint : dem::InitialParticles::Insert;
@@ -252,6 +253,10 @@ coupling::FluidView Simulation::fluidView() {
   }
   view.density = fluid_->density();
   view.viscosity = fluid_->viscosity();
+  if (fluid_->vofEnabled()) {  // (several fluids: each cell's mixture, fluid.vof)
+    view.mixtureDensity = &fluid_->mixtureDensity();
+    view.mixtureViscosity = &fluid_->mixtureViscosity();
+  }
   view.timeStep = fluidStep();
   return view;
 }
@@ -391,7 +396,13 @@ void Simulation::rebalanceIfDue() {
   // (coupled cases under MPI on the Cartesian layout; DEM-only cases re-cut their own boxes, dem::System)
   if (!coupler_ || !decomposition_.distributed() || !decomposition_.gridded()) return;
   const dem::BalanceSettings& b = dem_->balanceSettings();
-  if (b.interval <= 0 || step_ / b.interval <= balanceChecks_) return;
+  if (b.interval <= 0) return;
+  // Besides every interval, one early check a tenth of an interval after the run (or the restart)
+  // began: a case that starts badly cut (a settled bed under a layout that cuts across its
+  // height) is re-cut after a few measured steps instead of running a whole interval unbalanced.
+  const bool early = !earlyBalanceChecked_ && step_ - runStartStep_ >= std::max(1LL, b.interval / 10);
+  if (!early && step_ / b.interval <= balanceChecks_) return;
+  earlyBalanceChecked_ = earlyBalanceChecked_ || early;
   balanceChecks_ = step_ / b.interval;
   // The work of a box: its cells at the measured fluid time per cell plus its particles at the
   // measured particle time (DEM and coupling) per particle, both summed over the ranks since the
@@ -700,6 +711,7 @@ RunStatus Simulation::run() {
   installSignalHandlers();
   const long long totalSteps = std::llround(settings_.endTime / settings_.demStep);
   ProgressReporter progress(settings_.endTime, settings_.progressInterval, options_.quiet);
+  runStartStep_ = step_;
   if (step_ == 0) {
     checkHealth();
     sampleMonitors(true);

@@ -155,6 +155,8 @@ class Simulation {
   io::PvdCollection fluidSeries_;
   PhaseTimers appTimers_;
   long long balanceChecks_ = 0;  // rebalanceIfDue: the last interval checked (step_ / rebalance_interval)
+  long long runStartStep_ = 0;   // step_ when run() began (0, or the restart's step)
+  bool earlyBalanceChecked_ = false;  // rebalanceIfDue's early check (a tenth of an interval in) done
 };
 
 /// Case fingerprint: hash of every resolved key except those allowed to change on restart.

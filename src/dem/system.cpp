@@ -52,7 +52,9 @@ System::System(Params& root, const Domain& domain, const Vec3& gravity, InitialP
                                  Range::atLeast(1.0)},
                                 1.2);
   balance_.interval = par.integer(
-      {"rebalance_interval", "-", "check the balance at the first list build after every this many steps (0: never)",
+      {"rebalance_interval", "-",
+       "check the balance at the first list build after every this many steps (0: never); cases with a fluid also "
+       "check once a tenth of it after the start or restart",
        Range::atLeast(0)},
       1000);
   balance_.byPairs = par.choice({"rebalance_weight", "-",

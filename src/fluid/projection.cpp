@@ -289,21 +289,22 @@ void Solver::project(double dt, double g0) {
     std::array<bool, 3> periodic{bc_.domainPeriodic(0), bc_.domainPeriodic(1), bc_.domainPeriodic(2) && !twoD_};
     // (a solver that owns its whole grid keeps hypre to its own process)
     if (hyprePressure_ && !hypre_) hypre_ = std::make_shared<HyprePressure>(!decomposition_->distributed());
-    if (hypre_)
-      hypre_->setup(decomposition_->distributed()
-                        ? PressureBox{bc_.domainCells, decomposition_->cellOffset(), grid_.cells}
-                        : PressureBox::whole(grid_.cells),
-                    periodic, T, dirichlet);
+    if (gatheredPressure_ && !gathered_) gathered_ = std::make_shared<GatheredPressure>();
+    const PressureBox box = decomposition_->distributed()
+                                ? PressureBox{bc_.domainCells, decomposition_->cellOffset(), grid_.cells}
+                                : PressureBox::whole(grid_.cells);
+    if (hypre_) hypre_->setup(box, periodic, T, dirichlet);
+    else if (gathered_) gathered_->setup(box, periodic, T, dirichlet);
     else poisson_.setup(grid_.cells, periodic, T, dirichlet);
     poissonKey_ = uniformCoupling_ && !vof_ ? timeCoeff : -1.0;
   }
-  // Pressure outlets: phi_b = p_out - p^n_b with p^n_b the interior pressure extrapolated
   // g.x at the centre of the boundary face of `cell` on side s of axis a.
   auto outletGravityPotential = [&](int a, int s, const int* cell) {
     Vec3 x = grid_.cellCentre(cell[0], cell[1], cell[2]);
     x[a] += (s == 0 ? -0.5 : 0.5) * grid_.spacing[a];
     return dot(gravity_, x);
   };
+  // Pressure outlets: phi_b = p_out - p^n_b with p^n_b the interior pressure extrapolated
   // linearly to the boundary, so that at convergence the pressure meets p_out there. Cells of the
   // z planes [kBegin, kEnd) only.
   auto forOutletCells = [&](int kBegin, int kEnd, auto&& body) {
@@ -336,17 +337,19 @@ void Solver::project(double dt, double g0) {
     poissonRhs_[static_cast<std::size_t>(cell[0]) + static_cast<std::size_t>(nx) * (cell[1] + static_cast<std::size_t>(ny) * cell[2])] +=
         2.0 * T * phiB;
   });
-  const PoissonResult res = hypre_ ? hypre_->solve(poissonX_, poissonRhs_, pressureTolerance_, pressureMaxIterations_)
-                                   : poisson_.solve(poissonX_, poissonRhs_, pressureTolerance_, pressureMaxIterations_);
+  const PoissonResult res =
+      hypre_      ? hypre_->solve(poissonX_, poissonRhs_, pressureTolerance_, pressureMaxIterations_)
+      : gathered_ ? gathered_->solve(poissonX_, poissonRhs_, pressureTolerance_, pressureMaxIterations_)
+                  : poisson_.solve(poissonX_, poissonRhs_, pressureTolerance_, pressureMaxIterations_);
   stats_.pressureIterations = res.iterations;
   stats_.pressureResidual = res.relativeResidual;
   const double* Phi = phi_.data().data();
   // eps = 1, K = 0: the same coefficient everywhere (no division per face); not with a mixture.
   const double uniformCoeff = 1.0 / timeCoeff;
+  const bool uniformCorrection = uniformCoupling_ && !vof_;
   // A team fills the ghosts of phi, u and p in its region, each member those of its planes (the
   // z sides from the first and last two planes: members own >= 2 planes, z not periodic).
   const bool fillInTeam = team > 1 && !bc_.periodic(2) && nz >= 2 * team;
-  const bool uniformCorrection = uniformCoupling_ && !vof_;
   inTeam(projectTeam_[1], [&](const PlaneSlab* slab) {
     // phi = the increment, with its ghosts.
     // (members' own planes, or all on one member)

@@ -126,17 +126,30 @@ void Solver::readParams(Params& fluid, const Domain& domain) {
   Params pressure = fluid.section({"pressure", "-", "pressure Poisson solver (preconditioned CG)"});
   hyprePressure_ =
       pressure.choice({"solver", "-",
-                       "multigrid: grainflow's multigrid-preconditioned CG (threaded, the fastest on one process); "
-                       "hypre: hypre's structured PCG preconditioned by PFMG (the solver of a run on several MPI "
-                       "ranks; initialises MPI)"},
+                       "multigrid: grainflow's multigrid-preconditioned CG (threaded, the fastest on one process; on "
+                       "several ranks it solves the whole grid on rank 0 up to gather_cells cells, and hypre takes "
+                       "larger grids); hypre: hypre's structured PCG preconditioned by PFMG on every rank "
+                       "(initialises MPI)"},
                       {"multigrid", "hypre"}, "multigrid") == "hypre";
+  const auto gatherCells = pressure.integer(
+      {"gather_cells", "-",
+       "on several ranks with solver: multigrid, the largest grid (cells in all) whose pressure is gathered onto "
+       "rank 0 and solved there by the multigrid (two messages per solve instead of a message round per "
+       "sweep; the bits of a one-rank run); larger grids go through hypre",
+       Range::atLeast(0)},
+      262144);
   if (decomposition_->distributed() && !hyprePressure_) {
-    // The multigrid works on a whole grid: a decomposed grid's pressure goes through hypre.
-    hyprePressure_ = true;
-    if (decomposition_->rank() == 0)
-      spdlog::info("fluid.pressure.solver: multigrid works on one rank; the pressure of this run on {} ranks goes "
-                   "through hypre",
-                   decomposition_->ranks());
+    const long long wholeCells = static_cast<long long>(globalCells[0]) * globalCells[1] * globalCells[2];
+    if (wholeCells <= gatherCells) {
+      gatheredPressure_ = true;
+    } else {
+      // The multigrid works on a whole grid: a decomposed grid's pressure goes through hypre.
+      hyprePressure_ = true;
+      if (decomposition_->rank() == 0)
+        spdlog::info("fluid.pressure.solver: the grid has {} cells, more than fluid.pressure.gather_cells = {}; the "
+                     "pressure of this run on {} ranks goes through hypre",
+                     wholeCells, gatherCells, decomposition_->ranks());
+    }
   }
   pressureTolerance_ = pressure.real({"tolerance", "-", "relative residual ||b - A x|| / ||b||", Range::positive()}, 1e-8);
   pressureMaxIterations_ =
@@ -358,6 +371,7 @@ void Solver::setScalar(const std::function<double(const Vec3&)>& f) {
 }
 
 void Solver::step(double dt) {
+  if (vof_) return stepVof(dt);  // several fluids (fluid/vof_step.cpp)
   ScopedPhase timer(timers_, Phase::Fluid);
   const parallel::RankReductionScope ranks(*decomposition_);
   const SerialFluidScope serial(grid_.interiorCellCount() < kSerialCellsBelow);
@@ -371,7 +385,6 @@ void Solver::step(double dt) {
   // stopping at its first non-uniform value (a boolean: the same answer for any thread count).
   constexpr std::size_t kChunk = 16384;
   const std::size_t chunks = (eps.size() + kChunk - 1) / kChunk;
-  if (vof_) return stepVof(dt);  // several fluids (fluid/vof_step.cpp)
   std::vector<std::uint8_t> chunkUniform(chunks, 1);
   parallelForAbove(static_cast<std::int64_t>(chunks), 8, [&](std::int64_t q) {
     const std::size_t end = std::min(eps.size(), (static_cast<std::size_t>(q) + 1) * kChunk);
@@ -570,6 +583,11 @@ std::vector<NamedCellField> Solver::cellFields() const {
   for (int c = 0; c < 3; ++c) out.push_back({kComponentNames[c], "m/s", std::move(v[c])});
   out.push_back({"pressure", "Pa", pressure()});
   out.push_back({"void_fraction", "-", coupling_.voidFraction});
+  if (vof_) {
+    for (std::size_t i = 0; i < phases_.size(); ++i) out.push_back({"alpha_" + phases_[i].name, "-", alpha_[i]});
+    out.push_back({"mixture_density", "kg/m^3", rhoCell_});
+    out.push_back({"modified_pressure", "Pa", p_});
+  }
   if (scalarEnabled_) out.push_back({"scalar", "-", scalar_});
   return out;
 }
@@ -583,11 +601,6 @@ bool Solver::healthyFast() const {
   const int dims = twoD_ ? 2 : 3;
   constexpr double kMax = std::numeric_limits<double>::max();
   unsigned bad = 0;
-  if (vof_) {
-    for (std::size_t i = 0; i < phases_.size(); ++i) out.push_back({"alpha_" + phases_[i].name, "-", alpha_[i]});
-    out.push_back({"mixture_density", "kg/m^3", rhoCell_});
-    out.push_back({"modified_pressure", "Pa", p_});
-  }
   // (After a step the CFL loop below reads every point of the dims components: a NaN or inf
   // there makes its rate NaN or inf, which fails the test as well.)
   for (int c = 0; c < 3; ++c) {
@@ -731,6 +744,11 @@ void Solver::save(BinaryWriter& out) const {
     }
     out.putVector(cells);
   }
+  if (vof_) {
+    out.putString("vof-v1");
+    for (const Field& a : alpha_) putField(a);
+    out.putVector(phaseOutflow_);
+  }
 }
 
 void Solver::load(BinaryReader& in) {
@@ -744,11 +762,6 @@ void Solver::load(BinaryReader& in) {
   steps_ = in.get<long long>();
   drive_ = in.get<double>();
   // The whole grid's arrays (save()); on a decomposed grid this rank takes its box of them.
-  if (vof_) {
-    out.putString("vof-v1");
-    for (const Field& a : alpha_) putField(a);
-    out.putVector(phaseOutflow_);
-  }
   const parallel::Decomposition& d = *decomposition_;
   auto readInto = [&](Field& f) {
     auto v = in.getVector<double>();
@@ -796,9 +809,6 @@ void Solver::load(BinaryReader& in) {
   }
   poissonKey_ = -1.0;
   healthCheckedAt_ = -1;
-}
-
-}  // namespace gf::fluid
   if (vof_) {
     if (in.getString() != "vof-v1") throw CheckpointError("fluid checkpoint: no phase fractions (fluid.vof)");
     for (Field& a : alpha_) readInto(a);
@@ -810,3 +820,6 @@ void Solver::load(BinaryReader& in) {
     (decomposition_->distributed() ? vof::decomposedFill(*decomposition_, sides) : vof::singleBoxFill(sides))(fields);
     updateMixture();
   }
+}
+
+}  // namespace gf::fluid

@@ -28,12 +28,13 @@
 #include "core/serialize.hpp"
 #include "core/timers.hpp"
 #include "fluid/boundary.hpp"
+#include "fluid/gathered_pressure.hpp"
 #include "fluid/hypre_pressure.hpp"
 #include "fluid/multigrid.hpp"
 #include "fluid/team_tuner.hpp"
 #include "parallel/decomposition.hpp"
-
 #include "vof/vof.hpp"
+
 namespace gf::fluid {
 
 struct PlaneSlab;         // fluid/loops.hpp
@@ -71,8 +72,9 @@ class Solver {
   /// its box: Decomposition::cellOffset/cellCount of fluid.cells). One rank (the default): the
   /// whole grid, the single-process solver. A decomposition of several ranks built without the
   /// grid's cells is rebuilt here with them (same layout); one built with other cells is refused.
-  /// On several ranks the pressure goes through hypre (fluid.pressure.solver: multigrid is
-  /// switched to hypre with a notice), ghost layers are exchanged with the neighbour ranks
+  /// On several ranks the pressure goes through the multigrid on rank 0 for a grid of at most
+  /// fluid.pressure.gather_cells cells (fluid/gathered_pressure.hpp), through hypre otherwise or
+  /// when the case asks for it (fluid.pressure.solver: hypre); ghost layers are exchanged with the neighbour ranks
   /// (parallel/halo.hpp) and the solvers' reductions are allreduces (parallel/reductions.hpp).
   Solver(Params& root, const Domain& domain, const Vec3& gravity,
          const parallel::Decomposition& decomposition = parallel::Decomposition());
@@ -130,8 +132,6 @@ class Solver {
   /// the eps pair that step used (a coupler may have moved the coupling fields on since).
   double maxDivergence() const;
 
-  /// Direct-forcing hook (resolved CFD-DEM, src/resolved; seed 000 lines 471-510): called by step()
-  /// once, after the momentum predictor and before the pressure projection, with the predicted face
   // Several immiscible fluids by volume of fluid (fluid.vof; docs/vof.md, fluid/vof_step.cpp).
   /// fluid.vof is given: the phase fractions are transported and the mixture sets rho and mu.
   bool vofEnabled() const { return vof_; }
@@ -157,6 +157,8 @@ class Solver {
   /// the mixture fields from them (tests; the case file's fluid.vof.regions does the same).
   void setPhases(const std::function<int(const Vec3&)>& phaseAt);
 
+  /// Direct-forcing hook (resolved CFD-DEM, src/resolved; seed 000 lines 471-510): called by step()
+  /// once, after the momentum predictor and before the pressure projection, with the predicted face
   /// velocities of this rank's box (u-hat, which the hook may overwrite with u-tilde), the step and
   /// the BDF coefficient gamma0 of the time derivative (a change du of a face velocity is the body
   /// force rho gamma0 du / dt). The projection then makes the forced field divergence-free. With
@@ -217,8 +219,6 @@ class Solver {
         body(static_cast<const int*>(face), static_cast<const int*>(cell));
       }
   }
-  // projection.cpp
-  void balanceOutflow(double dt);
   // vof_step.cpp
   void readVof(Params& fluid);
   /// step() with a VOF mixture: explicit predictor with rho_f, mu_f and the buoyancy face force,
@@ -228,6 +228,8 @@ class Solver {
   void transportPhases(double dt);
   void updateMixture();
   vof::Sides vofSides() const;
+  // projection.cpp
+  void balanceOutflow(double dt);
   void project(double dt, double gamma0);
   void controlFlowRate(double dt, double gamma0);
   double correctMomentum(double dt, double gamma0);
@@ -308,6 +310,10 @@ class Solver {
   /// (created at the first projection).
   bool hyprePressure_ = false;
   std::shared_ptr<HyprePressure> hypre_;
+  /// Several ranks with fluid.pressure.solver: multigrid on a grid small enough to gather: the
+  /// pressure goes through GatheredPressure (created at the first projection).
+  bool gatheredPressure_ = false;
+  std::shared_ptr<GatheredPressure> gathered_;
   double poissonKey_ = -1.0;  // rho gamma0 / dt of the current multigrid setup (-1: rebuild)
   bool uniformCoupling_ = true;
   bool epsOlderOnes_ = true;  // epsOlder_ is 1 everywhere (ghosts included)
@@ -325,9 +331,6 @@ class Solver {
   StepStatistics stats_;
   PhaseTimers timers_;
   PredictorHook predictorHook_;  // setPredictorHook
-};
-
-}  // namespace gf::fluid
 
   // VOF (fluid.vof; fluid/vof_step.cpp). Empty / false: the single-fluid solver.
   struct VofPhase {
@@ -345,3 +348,6 @@ class Solver {
   int vofInflowPhase_ = 0;
   int vofSubsteps_ = 0;
   std::vector<double> phaseOutflow_, phaseOutflowRate_;
+};
+
+}  // namespace gf::fluid

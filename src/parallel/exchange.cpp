@@ -122,6 +122,40 @@ std::vector<Bytes> allgather(const Bytes& local) {
   return out;
 }
 
+Bytes scatterFromRoot(const std::vector<Bytes>& perRank) {
+  const Environment& env = Environment::instance();
+  const int size = env.size();
+  std::vector<long long> counts(static_cast<std::size_t>(size), 0);
+  if (env.root()) {
+    if (perRank.size() != static_cast<std::size_t>(size))
+      throw std::logic_error("parallel::scatterFromRoot: one buffer per rank expected");
+    for (int r = 0; r < size; ++r) counts[r] = static_cast<long long>(perRank[r].size());
+  }
+  long long mine = 0;
+  MPI_Scatter(counts.data(), 1, MPI_LONG_LONG, &mine, 1, MPI_LONG_LONG, 0, world());
+  constexpr int kScatterTag = 7105;
+  if (env.root()) {
+    // Rank by rank, in chunks (no 2 GiB limit, as in gatherToRoot).
+    std::vector<MPI_Request> requests;
+    for (int r = 1; r < size; ++r)
+      for (std::size_t at = 0; at < perRank[r].size();) {
+        const int chunk = static_cast<int>(std::min<std::size_t>(perRank[r].size() - at, 1u << 30));
+        requests.emplace_back();
+        MPI_Isend(perRank[r].data() + at, chunk, MPI_BYTE, r, kScatterTag, world(), &requests.back());
+        at += static_cast<std::size_t>(chunk);
+      }
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    return perRank[0];
+  }
+  Bytes out(static_cast<std::size_t>(mine));
+  for (std::size_t at = 0; at < out.size();) {
+    const int chunk = static_cast<int>(std::min<std::size_t>(out.size() - at, 1u << 30));
+    MPI_Recv(out.data() + at, chunk, MPI_BYTE, 0, kScatterTag, world(), MPI_STATUS_IGNORE);
+    at += static_cast<std::size_t>(chunk);
+  }
+  return out;
+}
+
 std::vector<Bytes> gatherToRoot(const Bytes& local) {
   const Environment& env = Environment::instance();
   const int size = env.size();

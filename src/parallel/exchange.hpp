@@ -36,6 +36,9 @@ std::vector<long long> sumOverRanks(const std::vector<long long>& local);
 std::vector<double> sumOverRanks(const std::vector<double>& local);
 /// Every rank's bytes on rank 0, indexed by rank (empty on the other ranks).
 std::vector<Bytes> gatherToRoot(const Bytes& local);
+/// The reverse of gatherToRoot: rank 0 passes one buffer per rank (perRank[r] for rank r; ignored
+/// elsewhere), every rank gets its own.
+Bytes scatterFromRoot(const std::vector<Bytes>& perRank);
 double maxOverRanks(double local);
 double sumOverRanks(double local);
 long long sumOverRanks(long long local);

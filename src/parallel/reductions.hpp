@@ -23,6 +23,19 @@ class RankReductionScope {
   bool installed_ = false;
 };
 
+/// The opposite: inside it, the reductions are this rank's own again (a solver that one rank runs
+/// for all, e.g. the gathered pressure solve, inside a step whose scope combines the ranks).
+class ThisRankOnlyScope {
+ public:
+  ThisRankOnlyScope() : previous_(rankReductions()) { setRankReductions(nullptr); }
+  ~ThisRankOnlyScope() { setRankReductions(previous_); }
+  ThisRankOnlyScope(const ThisRankOnlyScope&) = delete;
+  ThisRankOnlyScope& operator=(const ThisRankOnlyScope&) = delete;
+
+ private:
+  const RankReductions* previous_;
+};
+
 /// The allreduces themselves (MPI_SUM, MPI_MAX over all ranks of the run).
 const RankReductions& allRankReductions();
 

@@ -14,17 +14,18 @@ grainflow=$1 mpiexec=$2 src=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 source "$(dirname "${BASH_SOURCE[0]}")/rank_runs.sh"
-# case_for SOURCE DESTINATION END LAYOUT: the case with hypre and momentum tolerances of 1e-12,
+# case_for SOURCE DESTINATION END LAYOUT: the case with hypre (or the pressure solver named by
+# $SOLVER) and momentum tolerances of 1e-12,
 # the given end time, monitors 5 times over the run, and domain.decomposition LAYOUT ("" = auto).
 # (close, rank_runs.sh: the momentum-balance errors, round-off themselves, are left to `balanced`)
 case_for() {
   python3 - "$@" <<'PY'
-import sys, yaml
+import os, sys, yaml
 src, dst, end, layout = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4]
 c = yaml.safe_load(open(src))
 c["time"]["end"] = end
 f = c["fluid"]
-f["pressure"] = dict(f.get("pressure") or {}, solver="hypre", tolerance=1e-12)
+f["pressure"] = dict(f.get("pressure") or {}, solver=os.environ.get("SOLVER", "hypre"), tolerance=1e-12)
 f["momentum_tolerance"] = 1e-12
 if layout:
     c["domain"]["decomposition"] = [int(v) for v in layout.split(",")]
@@ -144,3 +145,34 @@ PY
   run 4 "$work/${law}4.yaml" "$work/${law}4"
   close "$work/${law}1" "$work/${law}4" 1e-10 "$law, three sizes: 4 ranks against 1 rank" momentum_error
 done
+
+# 7. The multigrid on several ranks (fluid.pressure.solver: multigrid, a grid under
+#    fluid.pressure.gather_cells): rank 0 solves the whole grid's pressure system, gathered from the
+#    boxes. The bubbling bed on 2 and 4 ranks and the periodic column split across x agree with 1
+#    rank's multigrid to the tolerance of item 7 of the parallel design (the system is the one rank's,
+#    cut faces and the periodic wrap included).
+SOLVER=multigrid case_for "$bed" "$work/mg.yaml" 0.001 ""
+SOLVER=multigrid case_for "$bed" "$work/mg4.yaml" 0.001 "1,2,2"
+SOLVER=multigrid case_for "$work/column_src.yaml" "$work/mgcolumn.yaml" 0.002 ""
+SOLVER=multigrid case_for "$work/column_src.yaml" "$work/mgcolumn2.yaml" 0.002 "2,1,1"
+run 1 "$work/mg.yaml" "$work/mg1"
+"$mpiexec" --oversubscribe -n 2 "$grainflow" run "$work/mg.yaml" --threads 1 --output "$work/mg2" >"$work/mg2.log" 2>&1 ||
+  { cat "$work/mg2.log"; exit 1; }
+run 4 "$work/mg4.yaml" "$work/mg4"
+run 1 "$work/mgcolumn.yaml" "$work/mgcolumn1"
+run 2 "$work/mgcolumn2.yaml" "$work/mgcolumn2"
+close "$work/mg1" "$work/mg2" 1e-10 "bubbling bed, gathered multigrid: 2 ranks against 1 rank" momentum_error
+close "$work/mg1" "$work/mg4" 1e-10 "bubbling bed, gathered multigrid: 4 ranks (1 x 2 x 2) against 1 rank" momentum_error
+close "$work/mgcolumn1" "$work/mgcolumn2" 1e-10 "sedimentation column, gathered multigrid: periodic x split between 2 ranks against 1 rank" momentum_error
+balanced "$work/mg4" "bubbling bed, gathered multigrid on 4 ranks: exchange balance"
+# (progress lines come from rank 0 only: one final line)
+finals=$(tr '\r' '\n' < "$work/mg2.log" | grep -c "100.0 %" || true)
+[[ $finals == 1 ]] || { echo "FAIL: $finals final progress lines on 2 ranks (1 expected)"; cat "$work/mg2.log"; exit 1; }
+if grep -q hypre "$work/mg2.log"; then echo "FAIL: a 5,400-cell grid on 2 ranks went through hypre"; cat "$work/mg2.log"; exit 1; fi
+# Above gather_cells the pressure goes through hypre, with a notice.
+sed 's/^  pressure:/  pressure:\n    gather_cells: 100/' "$work/mg.yaml" > "$work/mgbig.yaml"
+grep -q "gather_cells: 100" "$work/mgbig.yaml" || { echo "FAIL: could not set gather_cells"; exit 1; }
+"$mpiexec" --oversubscribe -n 2 "$grainflow" run "$work/mgbig.yaml" --threads 1 --end-time 0.0001 --output "$work/mgbig" \
+  >"$work/mgbig.log" 2>&1 || { cat "$work/mgbig.log"; exit 1; }
+grep -q "goes through hypre" "$work/mgbig.log" || { echo "FAIL: no hypre notice above gather_cells"; cat "$work/mgbig.log"; exit 1; }
+echo "ok: above fluid.pressure.gather_cells the pressure goes through hypre"
