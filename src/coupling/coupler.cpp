@@ -530,6 +530,10 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   const std::int32_t* const material = particles.type.data();
   const bool modelB = settings_.model == ExchangeModel::B;
   const double rho = fluid.density, mu = fluid.viscosity;
+  // (several fluids: the density and viscosity of each particle's cell, fluid.vof)
+  const Field* const rhoField = fluid.mixtureDensity;
+  const Field* const muField = fluid.mixtureViscosity;
+  const bool mixture = rhoField && muField;
   const double epsFloor = std::max(settings_.minVoidFraction, 1e-6);
   [[maybe_unused]] const int channels = StandardChannels ? kStandardChannels : sampleChannels_;
   const int cP = StandardChannels ? 4 : gradPChannel_, cT = StandardChannels ? 7 : divTauChannel_,
@@ -552,7 +556,7 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
   Vec3* const slipOut = columns.slip;
   Vec3* const otherOut = columns.other;
   const Vec3* const previousSlipIn = columns.previousSlip;
-  auto forceBlock = [&, rho, mu, epsFloor, dPrimFactor, k3, inverseK, k3ByMaterial, material, betaOut, slipOut, otherOut,
+  auto forceBlock = [&, rho, mu, mixture, epsFloor, dPrimFactor, k3, inverseK, k3ByMaterial, material, betaOut, slipOut, otherOut,
                      previousSlipIn](
                         const double* samples, std::size_t begin, int count, std::array<double, 4>& sums) {
     double sum[4] = {sums[0], sums[1], sums[2], sums[3]};  // in registers, not through the reference
@@ -593,7 +597,21 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       slipOut[p] = slip;
     }
     squareRoots(slipSquared, slipNorm, count);
-    for (int q = 0; q < count; ++q) re[q] = rho * slipNorm[q] * dPrimOf[q] / mu;
+    double rhoOf[kBlock], muOf[kBlock];  // (mixture: the particle's cell's; filled only then)
+    if (mixture) {
+      const CartesianGrid& g = topology_.grid;
+      for (int q = 0; q < count; ++q) {
+        const Vec3& x = particles.position[begin + q];
+        int c[3];
+        for (int a = 0; a < 3; ++a)
+          c[a] = std::clamp(static_cast<int>(std::floor((x[a] - g.origin[a]) * topology_.inverseSpacing[a])), 0,
+                            g.cells[a] - 1);
+        rhoOf[q] = (*rhoField)(c[0], c[1], c[2]);
+        muOf[q] = (*muField)(c[0], c[1], c[2]);
+      }
+    }
+    for (int q = 0; q < count; ++q)
+      re[q] = (mixture ? rhoOf[q] : rho) * slipNorm[q] * dPrimOf[q] / (mixture ? muOf[q] : mu);
     double correction[kBlock];  // f(Re, eps) of the law
     if (w.drag) {
       if constexpr (std::is_same_v<Law, ParticleCorrection>) law.block(begin, re, eps, correction, count);
@@ -607,7 +625,8 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       const double dPrim = dPrimOf[q];
       const double k3p = inverseK ? k3ByMaterial[material[p]] : k3;
       const double volume = force::sphereVolume(d);  // parcel volume = k^3 primary volumes
-      const double beta = w.drag ? k3p * particleDragCoefficient(mu, dPrim, correction[q]) : 0.0;
+      const double rhoP = mixture ? rhoOf[q] : rho, muP = mixture ? muOf[q] : mu;
+      const double beta = w.drag ? k3p * particleDragCoefficient(muP, dPrim, correction[q]) : 0.0;
       const Vec3 fDrag = force::drag(beta, slip);
       // pressure and viscous forces: given back to the fluid in model B, on the particle only in
       // model A (summed first, then assigned: no reference chosen at run time, which kept both
@@ -620,15 +639,15 @@ void Coupler::forcePass(const FluidView& fluid, const Law& law, dem::ParticleSet
       if (w.buoyancy) particleOnly += volume * buoyancy;
       if (w.virtualMass) {
         const Vec3 previous = std::isnan(previousSlipIn[p].x) ? slip : previousSlipIn[p];
-        exchangedOther += force::virtualMass(w.virtualMassCoefficient, rho, volume, slip, previous, fluid.timeStep);
+        exchangedOther += force::virtualMass(w.virtualMassCoefficient, rhoP, volume, slip, previous, fluid.timeStep);
       }
       Vec3 torque{};
       if (cW >= 0) {
         const Vec3 vorticity{s[q][cW], s[q][cW + 1], s[q][cW + 2]};
         const Vec3 relOmega = force::relativeRotation(particles.angularVelocity[p], vorticity);
-        if (w.saffmanMeiLift) exchangedOther += k3p * force::saffmanMeiLift(rho, mu, dPrim, slip, vorticity);
-        if (w.magnusLift) exchangedOther += k3p * force::magnusLift(rho, dPrim, relOmega, slip);
-        if (w.fluidTorque) torque = k3p * force::rotationalTorque(mu, dPrim, relOmega);
+        if (w.saffmanMeiLift) exchangedOther += k3p * force::saffmanMeiLift(rhoP, muP, dPrim, slip, vorticity);
+        if (w.magnusLift) exchangedOther += k3p * force::magnusLift(rhoP, dPrim, relOmega, slip);
+        if (w.fluidTorque) torque = k3p * force::rotationalTorque(muP, dPrim, relOmega);
       }
       betaOut[p] = beta;
       if (keepOther) otherOut[p] = exchangedOther;

@@ -53,6 +53,11 @@ struct FluidView {
   const Field* viscousStressDivergence[3] = {nullptr, nullptr, nullptr};  // div tau, N/m^3 (optional)
   double density = 1000.0;   // kg/m^3
   double viscosity = 1e-3;   // dynamic, Pa s
+  /// Several fluids (fluid.vof): the cells' mixture density and viscosity (seed 002 eqs. 3-4); a
+  /// particle's drag, lift, virtual mass and torque take those of its cell instead of the two above.
+  /// Null: one fluid.
+  const Field* mixtureDensity = nullptr;
+  const Field* mixtureViscosity = nullptr;
   double timeStep = 0.0;     // coupling interval (fluid step), s; needed by the virtual mass force
 };
 
