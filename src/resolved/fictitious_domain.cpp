@@ -192,6 +192,28 @@ void FictitiousDomain::fluidStep(fluid::Solver& fluid, dem::ParticleSet& particl
   const double diagonal = predictorDiagonal(rho_, fluid.viscosity(), gamma0, dt, box_.grid.spacing, box_.twoD);
   if (implicit_ || particleImplicit_) setPenalty(fluid, diagonal);
 
+  // The fluid momentum inside a particle that has no value from a last step (the first step; a new
+  // particle), from the velocity before this step: the rigid-body correction of its first step is
+  // then taken too (without it that step's rho I^{n+1} / dt would be lost from the momentum balance
+  // of fluid and particle). (A fixed body's first step keeps no correction: it is held whatever its
+  // load, and the fluid of a starting stream inside it would show as a spike.)
+  const std::array<const Field*, 3> uBefore{&fluid.velocity(0), &fluid.velocity(1), &fluid.velocity(2)};
+  {
+    auto& momentum = particles.vec3Columns[momentumColumn_].values;
+    auto& angular = particles.vec3Columns[angularColumn_].values;
+    auto& known = particles.doubleColumns[knownColumn_].values;
+    for (std::size_t q = 0; q < owned.size(); ++q) {
+      const std::size_t i = owned[q];
+      if (known[i] != 0.0) continue;
+      const Body b = forcingBody(particleBodies_[q]);
+      const FaceSums s =
+          particleImplicit_ ? penaltyMomentumInside(b, box_, uBefore, diagonal) : fluidMomentumInside(b, box_, uBefore);
+      momentum[i] = s.momentum;
+      angular[i] = s.angularMomentum;
+      known[i] = 1.0;
+    }
+  }
+
   fluid.step(dt);  // predictor, projection (explicit forcing: impose, through the hook, between them)
 
   const std::array<const Field*, 3> u{&fluid.velocity(0), &fluid.velocity(1), &fluid.velocity(2)};
@@ -201,6 +223,19 @@ void FictitiousDomain::fluidStep(fluid::Solver& fluid, dem::ParticleSet& particl
   if (particleImplicit_)
     for (std::size_t q = 0; q < owned.size(); ++q)
       forcingSums_[nf + q] = implicitForcingLoad(forcingBody(particleBodies_[q]), box_, u, diagonal);
+
+  // The first (BDF1) fluid step: the BDF2 steps after it carry on half of its momentum change again
+  // (with no force after it, M^{n+1} - M^n = (M^n - M^{n-1}) / 3, a series adding up to 1/2), so the
+  // fluid ends up with 3/2 of the first step's forcing impulse: the bodies get 3/2 of that step's
+  // forcing load. The balance of the BDF2 steps is Q^{n+1} - Q^n = dt F, Q = (3 M^{n+1} - M^n) / 2,
+  // and Q^1 = M^0 + 3/2 (M^1 - M^0): with this the fluid's Q plus the particles' momentum (less the
+  // fluid inside them, the rigid-body correction) is constant from the start (tests/resolved,
+  // docs/resolved.md sec. 3).
+  if (gamma0 != 1.5)
+    for (FaceSums& s : forcingSums_) {
+      s.force *= 1.5 / gamma0;
+      s.torque *= 1.5 / gamma0;
+    }
 
   // Fluid momentum inside each body after the projection: the rigid-body correction rho dI/dt
   // (Kempe & Froehlich 2012 eq. 8), I from this step and the last.
