@@ -712,6 +712,8 @@ RunStatus Simulation::run() {
   const long long totalSteps = std::llround(settings_.endTime / settings_.demStep);
   ProgressReporter progress(settings_.endTime, settings_.progressInterval, options_.quiet);
   runStartStep_ = step_;
+  // (a restart's first balance check is the early one below, after some measured steps)
+  if (const long long interval = dem_->balanceSettings().interval; interval > 0) balanceChecks_ = step_ / interval;
   if (step_ == 0) {
     checkHealth();
     sampleMonitors(true);
