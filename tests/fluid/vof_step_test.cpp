@@ -7,8 +7,11 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
+#include "core/monitor.hpp"
+#include "core/params.hpp"
 #include "fluid/sampling.hpp"
 #include "fluid/solver.hpp"
 #include "fluid_test_util.hpp"
@@ -150,6 +153,38 @@ TEST(VofStep, CollapsingColumnConservesPhasesAndBounds) {
     EXPECT_LE(range[1], 1.0 + 1e-12);
   }
   EXPECT_LT(vof::maxSumError({s.phaseFraction(0), s.phaseFraction(1)}), 1e-12);
+}
+
+// The last place where a profile falls through a level (interface_position's formula).
+TEST(VofStep, LastCrossingOfAProfile) {
+  const std::vector<double> x{0.5, 1.5, 2.5, 3.5, 4.5, 5.5};
+  EXPECT_DOUBLE_EQ(lastCrossing(x, {1, 1, 0.75, 0.25, 0, 0}, 0.5), 3.0);
+  EXPECT_DOUBLE_EQ(lastCrossing(x, {1, 1, 1, 1, 1, 1}, 0.5), 5.5);   // never below: the last centre
+  EXPECT_DOUBLE_EQ(lastCrossing(x, {0, 0, 0, 0, 0, 0}, 0.5), 0.0);   // never above: the first face
+  EXPECT_DOUBLE_EQ(lastCrossing(x, {1, 0, 0, 1, 0.5, 0}, 0.5), 4.5);  // a drop above: its upper edge
+}
+
+// The monitors of a mixture on the hydrostatic tank: water mass, bounds, and the surface height.
+TEST(VofStep, PhaseMassAndInterfaceMonitors) {
+  auto c = makeCase(tankCase(10, 40, 0.1, "{type: pressure_outlet, pressure: 0.0}"), Vec3{0.0, -kG, 0.0});
+  Solver& s = *c.solver;
+  s.step(1e-3);
+  RunState state;
+  state.fluid = &s;
+  Params pm = Params::loadString("phase: water\n", "m.yaml");
+  auto mass = Registry<Monitor>::instance().createByName("phase_mass", pm);
+  const auto m = mass->sample(state);
+  ASSERT_EQ(m.size(), mass->columns().size());
+  EXPECT_NEAR(m[0], 1000.0 * 0.1 * 0.1 * 0.005, 1e-14);  // kg
+  EXPECT_EQ(m[3], 0.0);                                   // balance
+  EXPECT_EQ(m[4], 0.0);
+  EXPECT_EQ(m[5], 1.0);
+  Params pi = Params::loadString("phase: water\nsearch_axis: y\nsearch_point: [0.05, 0, 0.0025]\n", "m.yaml");
+  auto surface = Registry<Monitor>::instance().createByName("interface_position", pi);
+  EXPECT_NEAR(surface->sample(state)[0], 0.1, 1e-12);
+  Params bad = Params::loadString("phase: oil\n", "m.yaml");
+  auto oil = Registry<Monitor>::instance().createByName("phase_mass", bad);
+  EXPECT_THROW(oil->sample(state), CaseError);
 }
 
 // Bad input names the key and what was expected.
