@@ -187,6 +187,41 @@ TEST(VofStep, PhaseMassAndInterfaceMonitors) {
   EXPECT_THROW(oil->sample(state), CaseError);
 }
 
+// A tank draining through a slot at the bottom of one side (pressure outlet behind blocked cells):
+// the water that leaves through the open side, summed over the substeps, closes the water's volume
+// balance to round-off, and the air that comes in through the open top closes the air's.
+TEST(VofStep, DrainingTankClosesEachPhasesBalance) {
+  const std::string yaml =
+      "domain: {min: [0, 0, 0], max: [0.1, 0.2, 0.005]}\n"
+      "fluid:\n"
+      "  cells: [20, 40, 1]\n"
+      "  pressure: {tolerance: 1.0e-10}\n"
+      "  vof:\n"
+      "    phases:\n"
+      "      - {name: air, density: 1.0, viscosity: 1.0e-5}\n"
+      "      - {name: water, density: 1000.0, viscosity: 1.0e-3}\n"
+      "    regions:\n"
+      "      - {phase: water, min: [0, 0, 0], max: [0.1, 0.15, 1]}\n"
+      "  blocked:\n"
+      "    - {shape: box, min: [0.095, 0.005, 0], max: [0.1, 0.2, 1]}\n"
+      "  boundaries:\n"
+      "    x_max: {type: pressure_outlet, pressure: 0.0}\n"
+      "    y_max: {type: pressure_outlet, pressure: 0.0}\n";
+  auto c = makeCase(yaml, Vec3{0.0, -kG, 0.0});
+  Solver& s = *c.solver;
+  const parallel::RankReductionScope ranks(s.decomposition());
+  const Field& eps = s.couplingFields().voidFraction;
+  const double w0 = vof::phaseVolume(s.phaseFraction(1), eps), a0 = vof::phaseVolume(s.phaseFraction(0), eps);
+  for (int n = 0; n < 400; ++n) s.step(5e-4);
+  const double w = vof::phaseVolume(s.phaseFraction(1), eps), a = vof::phaseVolume(s.phaseFraction(0), eps);
+  std::printf("drain: water out %.4e m^3 of %.4e; balance %.2e (water), %.2e (air)\n", s.phaseOutflowVolume(1), w0,
+              (w + s.phaseOutflowVolume(1) - w0) / w0, (a + s.phaseOutflowVolume(0) - a0) / w0);
+  EXPECT_GT(s.phaseOutflowVolume(1), 0.02 * w0);  // (7 % in 0.2 s)
+  EXPECT_LT(s.phaseOutflowVolume(0), 0.0);        // air comes in
+  EXPECT_NEAR(w + s.phaseOutflowVolume(1), w0, 1e-12 * w0);
+  EXPECT_NEAR(a + s.phaseOutflowVolume(0), a0, 1e-12 * w0);
+}
+
 // Bad input names the key and what was expected.
 TEST(VofStep, CaseFileErrors) {
   auto message = [](const std::string& vof) {
