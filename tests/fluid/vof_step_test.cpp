@@ -6,9 +6,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "core/domain.hpp"
 #include "core/error.hpp"
 #include "core/monitor.hpp"
 #include "core/params.hpp"
@@ -220,6 +224,42 @@ TEST(VofStep, DrainingTankClosesEachPhasesBalance) {
   EXPECT_LT(s.phaseOutflowVolume(0), 0.0);        // air comes in
   EXPECT_NEAR(w + s.phaseOutflowVolume(1), w0, 1e-12 * w0);
   EXPECT_NEAR(a + s.phaseOutflowVolume(0), a0, 1e-12 * w0);
+}
+
+// Every cases/vof_*.yaml runs shortened: those without particles through the solver (a few steps,
+// monitors finite), the packed bed through `grainflow run` (20 ms).
+TEST(VofStep, ExampleCasesRunShortened) {
+  int found = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(GRAINFLOW_SOURCE_DIR) + "/cases")) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("vof_", 0) != 0 || entry.path().extension() != ".yaml") continue;
+    ++found;
+    SCOPED_TRACE(name);
+    Params root = Params::loadFile(entry.path().string());
+    if (root.has("insertion")) {
+      const std::string out = ::testing::TempDir() + "/vof_case_" + std::to_string(found);
+      const std::string cmd = std::string(GRAINFLOW_BINARY) + " run " + entry.path().string() +
+                              " --quiet --threads 1 --overwrite --end-time 0.02 --output " + out + " > /dev/null 2>&1";
+      EXPECT_EQ(std::system(cmd.c_str()), 0);
+      EXPECT_TRUE(std::filesystem::exists(out + "/water_mass.csv"));
+      continue;
+    }
+    const Domain domain = Domain::read(root);
+    Solver s(root, domain, root.vec3({"gravity", "m/s^2", "gravity"}, Vec3{}));
+    ASSERT_TRUE(s.vofEnabled());
+    RunState state;
+    state.fluid = &s;
+    std::vector<std::unique_ptr<Monitor>> monitors;
+    for (Params& m : root.list({"monitors", "-", "monitors"}))
+      monitors.push_back(Registry<Monitor>::instance().create(m, {"type", "-", "monitor"}));
+    for (int n = 0; n < 5; ++n) {
+      s.step(2e-4);
+      s.checkHealth(n, s.time());
+      for (auto& m : monitors)
+        for (double v : m->sample(state)) EXPECT_TRUE(std::isfinite(v));
+    }
+  }
+  EXPECT_GE(found, 4);
 }
 
 // Bad input names the key and what was expected.
