@@ -36,7 +36,10 @@ TEST(ResolvedCases, EveryResolvedCaseRunsShortened) {
       {"resolved_cylinder_re100.yaml", "0.02"},
       {"resolved_fixed_sphere.yaml", "0.015"},
       {"resolved_rotating_sphere.yaml", "0.015"},
-      {"resolved_settling_sphere.yaml", "0.002"}};
+      {"resolved_settling_sphere.yaml", "0.002"},
+      {"resolved_two_spheres_dkt.yaml", "0.003"},
+      {"resolved_eight_spheres.yaml", "0.0015"},
+      {"resolved_boycott.yaml", "0.002"}};
   int found = 0;
   for (const auto& entry : std::filesystem::directory_iterator(source("cases")))
     found += entry.path().filename().string().rfind("resolved_", 0) == 0;
