@@ -1,22 +1,36 @@
 // The fluid step with several immiscible fluids (fluid.vof; docs/vof.md): mixture density and
 // viscosity from the phase fractions (seed 002 eqs. 3-4, lines 320-322), the momentum equation
 // with the modified pressure p* = p - rho_f g.x (seed 002 eq. 6, line 328), the projection with
-// 1/rho_f (fluid/variable_density.hpp), and the phase transport with the projected face fluxes
-// (src/vof, sub-cycled).
+// 1/rho_f (fluid/variable_density.hpp), and the phase transport (src/vof, sub-cycled).
 //
-// Predictor (first order in time, explicit convection and viscous stress, implicit drag diagonal),
-// at every momentum unknown face f of component c, with a = eps_f (model A) or 1 (model B):
+// Order of a step (as OpenFOAM's interFoam): the fractions first, moved by the face fluxes of the
+// last projection (alpha^n -> alpha^{n+1}, rho^n -> rho^{n+1}); the transport's upwind phase
+// fluxes F^L_i give the mass flux M = sum_i rho_i F^L_i (mean over the substeps). Then the
+// predictor (first order in time, explicit convection and viscous stress, implicit drag diagonal)
+// at every momentum unknown face f of component c, with a = eps_f (model A) or 1 (model B), on the
+// control volume of the face (half of each neighbour cell):
 //
-//   (rho_f eps_f / dt + K_f) u*  =  rho_f eps^n_f u^n / dt - rho_f div(eps u u_c)
-//        + div(eps mu_f (grad u + grad u^T))_c - a d p*/dx_c - a (g.x)_f d rho/dx_c
+//   (m^{n+1}_f / dt + K_f) u*  =  m^n_f u^n / dt - sum_faces M_cv u^n_upwind
+//        + div(eps mu_f (grad u + grad u^T))_c - a d p*/dx_c - a (g.x)_f d rho^{n+1}/dx_c
 //        + (eps_f - a) rho_f g_c + a drive + F_f + K_f u_p,f
+//
+// m^n_f = (rho^n_L eps^n_L + rho^n_R eps^n_R)/2; the control volume's mass fluxes M_cv are the
+// means of its two cells' M, and its new mass m^{n+1}_f = m^n_f - dt div M_cv is its own balance
+// of them. The momentum thus moves with the mass that moves (Rudman 1998, Int. J. Numer. Meth.
+// Fluids 28): a light cell that takes in heavy fluid takes in its momentum too, and what leaves a
+// control volume carries its own velocity, so (m^n - dt M_out) u^n >= 0 keeps u* bounded where the
+// volume empties of water (the fractions' own high-order fluxes, averaged onto a control volume,
+// do not guarantee that: a version with them ran away in the dam break). m^{n+1}_f differs from the
+// new fractions' (rho^{n+1} eps)_f, which the projection takes, by the transport's limited
+// corrections.
 //
 // The buoyancy -(g.x)_f (rho_R - rho_L)/h (fluid::hydrostaticFaceForce) carries the same face
 // coefficient a as the pressure gradient, so a column at rest with any density jump has a
 // discrete p* that cancels it face by face ("balanced force"): u* = u^n = 0, and the projection
-// of a zero field stays zero. rho_f = (rho_L + rho_R)/2 (fluid::faceDensity) in the predictor and
-// the projection alike. Model A: the eps rho g of the single-fluid equation is part of the buoyancy
-// term (-eps grad p + eps rho g = -eps grad p* - eps (g.x) grad rho); model B keeps (eps - 1) rho g.
+// of a zero field stays zero. rho_f = (rho_L + rho_R)/2 (fluid::faceDensity) in the buoyancy and
+// the projection alike. Model A: the eps rho g of the single-fluid equation is part of the
+// buoyancy term (-eps grad p + eps rho g = -eps grad p* - eps (g.x) grad rho); model B keeps
+// (eps - 1) rho g.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -29,6 +43,7 @@
 #include "fluid/solver.hpp"
 #include "fluid/variable_density.hpp"
 #include "core/reduction.hpp"
+#include "parallel/halo.hpp"
 #include "parallel/reductions.hpp"
 
 namespace gf::fluid {
@@ -102,7 +117,11 @@ void Solver::readVof(Params& fluid) {
   muCell_ = Field(grid_);
   pTotal_ = Field(grid_);
   vofEps_ = Field(grid_, Staggering::Cell, 1.0);
-  for (int c = 0; c < 3; ++c) vofFlux_[c] = Field(grid_, static_cast<Staggering>(c + 1));
+  for (int c = 0; c < 3; ++c) {
+    vofFlux_[c] = Field(grid_, static_cast<Staggering>(c + 1));
+    massFlux_[c] = Field(grid_, static_cast<Staggering>(c + 1));
+  }
+  rhoOld_ = Field(grid_);
   transport_ = vof::PhaseTransport(grid_, n);
   phaseOutflow_.assign(static_cast<std::size_t>(n), 0.0);
   phaseOutflowRate_.assign(static_cast<std::size_t>(n), 0.0);
@@ -177,13 +196,11 @@ void Solver::updateMixture() {
 
 void Solver::predictMomentumVof(double dt) {
   const int dims = twoD_ ? 2 : 3;
-  // N = div(eps u u_c) per unit density (the fluid's convection kernels with rho = 1, without the
-  // eps-varying viscous rest: the stress is taken whole below).
-  computeConvection(conv_, nullptr, 1.0, 0.0);
   const double* E = coupling_.voidFraction.data().data();
   const double* En = coupling_.voidFractionOld.data().data();
   const double* K = coupling_.dragCoefficient.data().data();
-  const double* R = rhoCell_.data().data();
+  const double* R = rhoCell_.data().data();  // rho^{n+1}
+  const double* R0 = rhoOld_.data().data();  // rho^n
   const double* M = muCell_.data().data();
   const double* P = p_.data().data();
   const bool modelA = model_ == MomentumModel::A;
@@ -208,7 +225,6 @@ void Solver::predictMomentumVof(double dt) {
     Field& u = u_[c];
     uOld_[c].data() = u.data();  // u^n (u^{n-1} of the next step)
     const double* U = uOld_[c].data().data();
-    const double* N = conv_[c].data().data();
     const double* F = coupling_.forceDensity[c].data().data();
     const double* Up = coupling_.particleVelocity[c].data().data();
     const auto& pts = u.points();
@@ -227,11 +243,40 @@ void Solver::predictMomentumVof(double dt) {
         const std::size_t cc = p_.index(i, j, k), cm = cc - se[c];
         const double rhoF = faceDensity(R[cm], R[cc]);
         const double epsF = 0.5 * (E[cc] + E[cm]);
-        const double epsN = 0.5 * (En[cc] + En[cm]);
+        // masses per volume of the face's control volume at n and n + 1
+        const double m0 = 0.5 * (R0[cm] * En[cm] + R0[cc] * En[cc]);
+        double m1 = 0.0;  // m0 - dt div M of the control volume (below, with the convection)
         const double KF = 0.5 * (K[cc] + K[cm]);
         const double a = modelA ? epsF : 1.0;
         Vec3 x = grid_.cellCentre(i, j, k);
         x[c] -= 0.5 * hc;
+        // Convection with the transport's mass fluxes: through the control volume's faces the
+        // mean of its two cells' M (at a cell centre along c, on a cell edge across).
+        double conv = 0.0;
+        for (int d = 0; d < dims; ++d) {
+          const Field& Md = massFlux_[d];
+          const double* MD = Md.data().data();
+          double Mp, Mm;
+          if (d == c) {
+            const std::size_t g = Md.index(i, j, k);
+            Mp = 0.5 * (MD[g] + MD[g + Md.stride(c)]);
+            Mm = 0.5 * (MD[g - Md.stride(c)] + MD[g]);
+          } else {
+            const std::size_t gc = Md.index(i, j, k), gm = gc - Md.stride(c);
+            const std::ptrdiff_t sd = Md.stride(d);
+            Mp = 0.5 * (MD[gc + sd] + MD[gm + sd]);
+            Mm = 0.5 * (MD[gc] + MD[gm]);
+          }
+          const std::ptrdiff_t s = su[d];
+          // upwind: what leaves the control volume carries its own velocity, so the momentum left
+          // behind is (m^n - dt M_out) u^n and u* stays bounded where m^{n+1} << m^n (air that
+          // a water cell leaves behind); a higher-order face value breaks this at 1000:1
+          const double qp = Mp >= 0.0 ? U[f] : U[f + s];
+          const double qm = Mm >= 0.0 ? U[f - s] : U[f];
+          conv += (Mp * qp - Mm * qm) / grid_.spacing[d];
+          m1 -= dt * (Mp - Mm) / grid_.spacing[d];
+        }
+        m1 += m0;
         // div(eps mu (grad u + grad u^T)) along c: normal stresses at the cell centres, shear
         // stresses at the cell edges (mu and eps the means of the four cells around an edge).
         double visc = 0.0;
@@ -254,12 +299,12 @@ void Solver::predictMomentumVof(double dt) {
           const double tauLo = muLo * ((U[f] - U[f - su[d]]) / hd + (V[idc] - V[idm]) / hc);
           visc += (tauHi - tauLo) / hd;
         }
-        double b = rhoF * epsN * U[f] / dt - rhoF * N[f] + visc;
+        double b = m0 * U[f] / dt - conv + visc;
         b -= a * (P[cc] - P[cm]) / hc;
         b += a * hydrostaticFaceForce(dot(gravity_, x), R[cm], R[cc], hc);
         b += (epsF - a) * rhoF * gc + a * drive;
         b += 0.5 * (F[cc] + F[cm]) + 0.5 * (K[cc] * Up[cc] + K[cm] * Up[cm]);
-        Out[f] = b / (rhoF * epsF / dt + KF);
+        Out[f] = b / (m1 / dt + KF);
       }
     });
   }
@@ -268,11 +313,11 @@ void Solver::predictMomentumVof(double dt) {
 }
 
 void Solver::transportPhases(double dt) {
-  // The face fluxes eps_f u_f of the projected velocity (eps_f of eps^{n+1}, as the continuity
-  // equation of the projection) move the fractions from eps^n: eps* = eps^n - dt div(phi) is
-  // eps^{n+1} to the pressure solver's tolerance.
+  // The face fluxes eps^n_f u^n of the last projection move the fractions from eps^n: with
+  // eps = 1 eps* = eps^n - dt div(phi) is 1 to the pressure solver's tolerance; with particles
+  // eps* = 2 eps^n - eps^{n-1}, eps^{n+1} to second order in dt.
   const int dims = twoD_ ? 2 : 3;
-  const double* E = coupling_.voidFraction.data().data();
+  const double* E = coupling_.voidFractionOld.data().data();
   for (int a = 0; a < 3; ++a) {
     Field& phi = vofFlux_[a];
     std::fill(phi.data().begin(), phi.data().end(), 0.0);
@@ -294,7 +339,21 @@ void Solver::transportPhases(double dt) {
   fill({&vofEps_});
   const int n = phaseCount();
   std::vector<double> outflow(static_cast<std::size_t>(n), 0.0);
+  for (Field& m : massFlux_) std::fill(m.data().begin(), m.data().end(), 0.0);
   auto afterSubstep = [&](double h) {
+    // the upwind mass flux sum_i rho_i F^L_i, the mean over the substeps
+    for (int a = 0; a < dims; ++a) {
+      Field& M = massFlux_[a];
+      const auto& pts = M.points();
+      for (int k = 0; k < pts[2]; ++k)
+        for (int j = 0; j < pts[1]; ++j)
+          for (int i = 0; i < pts[0]; ++i) {
+            const std::size_t q = M.index(i, j, k);
+            double sum = 0.0;
+            for (int p = 0; p < n; ++p) sum += phases_[static_cast<std::size_t>(p)].density * transport_.upwindFlux(p, a).data()[q];
+            M.data()[q] += (h / dt) * sum;
+          }
+    }
     // (every rank the same sides in the same order: boundaryOutflow sums across the ranks)
     for (int a = 0; a < dims; ++a)
       for (int s = 0; s < 2; ++s) {
@@ -309,6 +368,27 @@ void Solver::transportPhases(double dt) {
   for (int i = 0; i < n; ++i) {
     phaseOutflow_[static_cast<std::size_t>(i)] += outflow[static_cast<std::size_t>(i)];
     phaseOutflowRate_[static_cast<std::size_t>(i)] = outflow[static_cast<std::size_t>(i)] / dt;
+  }
+  // Ghosts of the mass fluxes: the neighbours' faces across the cuts, the periodic wraps of this
+  // box (the predictor reads the faces of the cells on both sides of a momentum face).
+  std::vector<Field*> fields{&massFlux_[0], &massFlux_[1], &massFlux_[2]};
+  if (decomposition_->distributed()) parallel::fillGhosts(fields, *decomposition_);
+  for (int a = 0; a < 3; ++a) {
+    if (!bc_.periodic(a)) continue;
+    const int cells = grid_.cells[a], g = grid_.ghosts;
+    for (Field* f : fields) {
+      const auto& pts = f->points();
+      int lo[3] = {-g, -g, -g}, hi[3] = {pts[0] + g, pts[1] + g, pts[2] + g};
+      for (int k = lo[2]; k < hi[2]; ++k)
+        for (int j = lo[1]; j < hi[1]; ++j)
+          for (int i = lo[0]; i < hi[0]; ++i) {
+            int idx[3] = {i, j, k};
+            const int along = idx[a];
+            if (along >= 0 && along < pts[a]) continue;
+            idx[a] = ((along % cells) + cells) % cells;  // (period: the cell count)
+            (*f)(i, j, k) = (*f)(idx[0], idx[1], idx[2]);
+          }
+    }
   }
 }
 
@@ -345,6 +425,9 @@ void Solver::stepVof(double dt) {
     epsOlderOnes_ = uniform;
   }
   stats_ = StepStatistics{};
+  rhoOld_.data() = rhoCell_.data();
+  transportPhases(dt);  // alpha^n -> alpha^{n+1} with the last projection's fluxes
+  updateMixture();      // rho^{n+1}, mu^{n+1}
   predictMomentumVof(dt);
   if (predictorHook_) predictorHook_(u_, dt, 1.0);
   balanceOutflow(dt);
@@ -352,8 +435,7 @@ void Solver::stepVof(double dt) {
     ScopedPhase pt(timers_, Phase::PressureSolve);
     project(dt, 1.0);
   }
-  transportPhases(dt);
-  updateMixture();
+  updateMixture();  // (p = p* + rho g.x with the new p*)
   epsOlder_ = coupling_.voidFractionOld;
   epsOlderOnes_ = uniform;
   epsStep_ = coupling_.voidFraction;

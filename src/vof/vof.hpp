@@ -87,6 +87,9 @@ class PhaseTransport {
   /// the ghosts of alpha unfilled.
   void applyLimitedFluxes(std::vector<Field>& alpha);
 
+  /// After computeFluxes: the upwind flux F^L_i = phi_f alpha_i,up of phase i along axis (m/s) on
+  /// the faces of the box (0 .. n along the axis).
+  const Field& upwindFlux(int phase, int axis) const { return low_[static_cast<std::size_t>(3 * phase + axis)]; }
   /// Transported void fraction eps* = eps - dt div(phi) of the last step (interior cells).
   const Field& transportedVoidFraction() const { return epsStar_; }
 
