@@ -342,7 +342,7 @@ class Solver {
   std::vector<Field> alpha_;          // phase fractions (cell fields)
   Field rhoCell_, muCell_, pTotal_;   // mixture rho, mu; p = p* + rho g.x (p_ holds p*)
   Field vofEps_, vofFlux_[3];         // eps at the start of the transport, eps_f u_f per axis
-  Field massFlux_[3];                 // sum_i rho_i F_i of the step's transport per axis (face fields)
+  Field massFlux_[3];                 // sum_i rho_i F^L_i (upwind) of the step's transport per axis (face fields)
   Field rhoOld_;                      // mixture density before the step's transport
   vof::PhaseTransport transport_;
   vof::TransportSettings vofSettings_;
