@@ -112,7 +112,9 @@ void Solver::readParams(Params& fluid, const Domain& domain) {
                    "A"
                ? MomentumModel::A
                : MomentumModel::B;
-  scheme_ = fluid.choice({"convection", "-", "convection scheme: central (2nd order) or van_leer (TVD)"},
+  scheme_ = fluid.choice({"convection", "-",
+                          "convection scheme: central (2nd order) or van_leer (TVD); with fluid.vof the momentum "
+                          "moves upwind with the phases' mass fluxes"},
                          {"central", "van_leer"}, "van_leer") == "central"
                 ? ConvectionScheme::Central
                 : ConvectionScheme::VanLeer;
