@@ -115,6 +115,11 @@ TEST(ValidationSpec, AcrossRunsKindsAndLowerBound) {
             std::string::npos);
   const std::string increment = replaced(richardson, "across_runs: richardson_order", "across_runs: min_increment");
   EXPECT_EQ(loadItem(itemDir(dir, increment)).quantities[1].across, AcrossRuns::MinIncrement);
+  // The gap closed needs a first, a second and a last run in both modes, as the observed order.
+  const std::string gap = replaced(richardson, "across_runs: richardson_order", "across_runs: gap_closed");
+  EXPECT_NE(loadError(gap).find("at least 3 runs"), std::string::npos) << loadError(gap);
+  EXPECT_EQ(loadItem(itemDir(dir, replaced(three, "across_runs: richardson_order", "across_runs: gap_closed"))).quantities[1].across,
+            AcrossRuns::GapClosed);
   EXPECT_NE(loadError(replaced(richardson, "{lower_bound: true}", "{lower_bound: true, absolute: 0.1}")).find("lower_bound alone"),
             std::string::npos);
 }
