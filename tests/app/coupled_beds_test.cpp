@@ -138,7 +138,7 @@ TEST(CoupledBeds, PressureDropConvergesWithSmoothingLength) {
 // the particle grid, and the exchange conserves momentum to round-off.
 TEST(CoupledBeds, TankDrainsThroughTheTapHole) {
   TempDir dir;
-  std::string text = gf::testing::readAll(gf::testing::sourcePath("cases/cfddem_tank_drain.yaml"));
+  std::string text = gf::testing::readAll(gf::testing::sourcePath("cases/cfddem_tank_drain_constant_head.yaml"));
   text = replaced(text, "nz: 41", "nz: 8");
   const auto r = grainflow("run " + dir.write("tank.yaml", text) + " --quiet --threads 1 --end-time 0.1 --output " +
                            dir.file("o"));
