@@ -62,6 +62,9 @@ class ValidationRun {
 
   /// Full mode over all items rewrites docs/validation.md.
   bool writesDocs() const { return !options_.quick && options_.names.empty() && options_.writeDocs; }
+  /// Item i runs with its --quick settings: in --quick mode, and in the full report for an item
+  /// marked report_quick (its full run takes hours; named on the command line it runs in full).
+  bool quickFor(std::size_t i) const { return options_.quick || (options_.names.empty() && items_[i].reportQuick); }
 
   void plan();
   /// Returns false if interrupted by SIGINT/SIGTERM.
@@ -98,17 +101,18 @@ class ValidationRun {
 
 PlannedRun ValidationRun::planRun(std::size_t i, std::size_t k, const std::string& caseText) const {
   const Item& item = items_[i];
-  const auto& runs = item.runsFor(options_.quick);
+  const bool quick = quickFor(i);
+  const auto& runs = item.runsFor(quick);
   PlannedRun p;
   p.item = i;
   p.run = k;
   p.outputDirectory = (fs::path(options_.outputDirectory) / item.name / (runs.size() == 1 ? "run" : fmt::format("run_{}", k))).string();
   fs::create_directories(p.outputDirectory);
-  std::vector<Override> overrides = options_.quick ? item.quickOverrides : std::vector<Override>{};
+  std::vector<Override> overrides = quick ? item.quickOverrides : std::vector<Override>{};
   overrides.insert(overrides.end(), runs[k].overrides.begin(), runs[k].overrides.end());
   p.caseFile = (fs::path(p.outputDirectory) / "case.yaml").string();
   io::writeFileAtomically(p.caseFile, fmt::format("# {} with {} override(s) applied by grainflow validate{}\n{}", item.caseFile,
-                                                  overrides.size(), options_.quick ? " --quick" : "",
+                                                  overrides.size(), quick ? " --quick" : "",
                                                   applyOverrides(caseText, overrides, item.caseFile)));
   try {
     auto simulation = Simulation::fromFile(p.caseFile, runOptions(p));
@@ -137,7 +141,7 @@ void ValidationRun::plan() {
   }
   for (std::size_t i = 0; i < items_.size(); ++i) {
     const Item& item = items_[i];
-    const std::size_t runs = item.runsFor(options_.quick).size();
+    const std::size_t runs = item.runsFor(quickFor(i)).size();
     extracted_[i].assign(item.quantities.size(), std::vector<Extracted>(runs));
     failures_[i].assign(runs, "");
     if (options_.quick && item.skipQuick) {
@@ -169,7 +173,7 @@ bool ValidationRun::execute() {
     const double eta = doneWork > 0.0 ? runWall / doneWork * (totalWork - doneWork) : NAN;
     std::printf("[%zu/%zu, %s elapsed, ETA %s] %s: %lld steps, %zu particle(s) ... ", n + 1, plan_.size(),
                 formatDuration(secondsSince(start_)).c_str(), formatDuration(eta).c_str(),
-                caseLabel(item, item.runsFor(options_.quick)[p.run]).c_str(), p.steps, p.particles);
+                caseLabel(item, item.runsFor(quickFor(p.item))[p.run]).c_str(), p.steps, p.particles);
     std::fflush(stdout);
     const auto runStart = std::chrono::steady_clock::now();
     std::string& failure = failures_[p.item][p.run];
@@ -198,13 +202,13 @@ void ValidationRun::compare() {
   for (std::size_t i = 0; i < items_.size(); ++i) {
     if (outcomes_[i].skipped) continue;
     const Item& item = items_[i];
-    const auto& runs = item.runsFor(options_.quick);
+    const auto& runs = item.runsFor(quickFor(i));
     const std::string itemDirectory = (fs::path(options_.outputDirectory) / item.name).string();
     std::vector<Quantity> quantities;
     std::vector<std::vector<Row>> rowsPerQuantity;
     for (std::size_t q = 0; q < item.quantities.size(); ++q) {
       Quantity quantity = item.quantities[q];
-      quantity.tolerance = quantity.toleranceFor(options_.quick);  // quick_tolerance in --quick mode
+      quantity.tolerance = quantity.toleranceFor(quickFor(i));  // quick_tolerance in --quick mode (and report_quick)
       rowsPerQuantity.push_back(compareQuantity(item, quantity, runs, extracted_[i][q], failures_[i]));
       rowsPerItem_[i].insert(rowsPerItem_[i].end(), rowsPerQuantity.back().begin(), rowsPerQuantity.back().end());
       quantities.push_back(std::move(quantity));

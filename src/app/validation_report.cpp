@@ -138,8 +138,8 @@ std::string summaryTable(const std::vector<Item>& items, const std::vector<std::
     std::size_t passed = 0;
     for (const Row& r : rowsPerItem[i]) passed += r.pass() ? 1 : 0;
     const bool ok = passed == rowsPerItem[i].size();
-    out += fmt::format("| [`{}`]({}#{}) | {} | {}/{} | {} |\n", items[i].name, linkPrefix, items[i].name, items[i].title, passed,
-                       rowsPerItem[i].size(), ok ? "pass" : "**FAIL**");
+    out += fmt::format("| [`{}`]({}#{}) | {}{} | {}/{} | {} |\n", items[i].name, linkPrefix, items[i].name, items[i].title,
+                       items[i].reportQuick ? " (quick settings)" : "", passed, rowsPerItem[i].size(), ok ? "pass" : "**FAIL**");
   }
   return out;
 }
@@ -210,6 +210,10 @@ void writeDocs(const std::string& docsDirectory, const std::string& repository, 
       md += fmt::format("; sweep `{}` = {}", item.sweepKey, fmt::join(values, ", "));
     }
     md += fmt::format("; wall time {:.1f} s.\n\n", outcomes[i].wallSeconds);
+    if (item.reportQuick)
+      md += fmt::format("*Run in this report with its `--quick` settings and tolerances (`report_quick`): its full run takes "
+                        "hours on the report's machine. `grainflow validate {}` runs it in full.*\n\n",
+                        item.name);
     for (const Quantity& q : item.quantities) {
       const std::string across = q.across == AcrossRuns::LogLogSlope       ? ", log-log slope over the runs"
                                  : q.across == AcrossRuns::RichardsonOrder ? ", observed order from the last three runs (Richardson)"

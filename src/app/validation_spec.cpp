@@ -377,7 +377,7 @@ Item loadItem(const std::string& directory) {
   }
   if (!root.IsMap()) throw CaseError(FileLocation{file, 1, 1}, "", "not a map", "a map of keys (title, case, quantities, ...)");
   const Map m(root, file, "");
-  m.allowOnly({"title", "description", "case", "quick", "skip_quick", "sweep", "quantities"});
+  m.allowOnly({"title", "description", "case", "quick", "skip_quick", "report_quick", "sweep", "quantities"});
   Item item;
   item.directory = directory;
   item.name = fs::path(directory).filename().string();
@@ -388,6 +388,9 @@ Item loadItem(const std::string& directory) {
   if (!fs::exists(item.caseFile)) m.fail("case", "'" + item.caseFile + "' (missing)", "an existing case file");
   item.quickOverrides = readOverrides(m, "quick");
   item.skipQuick = m.boolean("skip_quick", false);
+  item.reportQuick = m.boolean("report_quick", false);
+  if (item.reportQuick && item.skipQuick)
+    m.fail("report_quick", "true together with skip_quick: true", "report_quick only for an item that has a --quick run");
 
   const bool hasSweep = m.has("sweep");
   if (hasSweep) {

@@ -82,6 +82,9 @@ struct Item {
   std::string caseFile;   // path
   std::vector<Override> quickOverrides;
   bool skipQuick = false;
+  /// report_quick: the full report (`grainflow validate`, all items) runs this item with its --quick
+  /// settings and tolerances, because its full run takes hours; `grainflow validate NAME` runs it in full.
+  bool reportQuick = false;
   std::string sweepKey, sweepLabel;
   std::vector<RunPoint> runs, quickRuns;  // one entry without overrides when there is no sweep
   std::vector<Quantity> quantities;

@@ -119,6 +119,29 @@ TEST(ValidateCli, FullModeWritesTheReportWithProvenance) {
   EXPECT_FALSE(fs::exists(dir.file("docs/validation.md")));
 }
 
+TEST(ValidateCli, ReportQuickItemRunsWithItsQuickSettingsInTheReportOnly) {
+  // report_quick: the full report runs the item with its --quick settings (the free fall stops at
+  // 0.05 s, so the comparison made for 0.1 s fails) and says so; named, the item runs in full.
+  TempDir dir;
+  writeItem(dir, "tiny", itemYaml("{relative: 1.0e-3}") + "report_quick: true\n");
+  writeItem(dir, "other", itemYaml("{relative: 1.0e-3}"));
+  auto r = grainflow("validate --threads 1 --no-plots --dir " + dir.file("validation") + " --output " + dir.file("out"));
+  EXPECT_EQ(r.exitCode, gf::app::kExitValidationFailed) << r.output;
+  EXPECT_NE(r.output.find("1 of 2 comparison(s) passed"), std::string::npos) << r.output;
+  const std::string report = readAll(dir.file("docs/validation.md"));
+  for (const char* text : {"Run in this report with its `--quick` settings", "`grainflow validate tiny` runs it in full",
+                           "Tiny free fall (quick settings)"})
+    EXPECT_NE(report.find(text), std::string::npos) << text << "\n" << report;
+  EXPECT_NE(readAll(dir.file("out/tiny/run/case.yaml")).find("--quick"), std::string::npos);
+  r = grainflow("validate --threads 1 --no-plots tiny --dir " + dir.file("validation") + " --output " + dir.file("out2"));
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  // report_quick with skip_quick is refused
+  writeItem(dir, "both", itemYaml("{relative: 1.0e-3}") + "report_quick: true\nskip_quick: true\n");
+  r = grainflow("validate --threads 1 --quick both --dir " + dir.file("validation") + " --output " + dir.file("out3"));
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("report_quick"), std::string::npos) << r.output;
+}
+
 TEST(ValidateCli, BadItemOrNameIsAnInputError) {
   TempDir dir;
   writeItem(dir, "tiny", itemYaml("{relative: 1.0e-3}") + "colour: red\n");
