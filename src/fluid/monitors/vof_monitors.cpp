@@ -1,5 +1,5 @@
 // Monitors of a run with several fluids (fluid.vof; docs/vof.md):
-//   phase_mass          mass of one phase in the domain, its outflow through the open sides (rate
+//   phase_mass          mass of one phase in the domain (blocked cells left out), its outflow through the open sides (rate
 //                       and total), the balance mass + outflow - initial mass (relative), and the
 //                       smallest and largest fraction of the phase in a cell
 //   interface_position  where a phase's fraction crosses 1/2 for the last time along a grid line
@@ -34,6 +34,19 @@ struct PhaseKey {
   }
 };
 
+/// The void fraction with blocked cells set to 0. Blocked cells carry no flux, so what the fractions
+/// hold there is no fluid of the run; a smoothed void fraction (coupling.smoothing_length) reaches
+/// into them and would change a phase's mass there without any flux.
+Field openVoidFraction(const Solver& f) {
+  Field eps = f.couplingFields().voidFraction;
+  const auto& n = eps.grid().cells;
+  for (int z = 0; z < n[2]; ++z)
+    for (int y = 0; y < n[1]; ++y)
+      for (int x = 0; x < n[0]; ++x)
+        if (f.blocked(x, y, z)) eps(x, y, z) = 0.0;
+  return eps;
+}
+
 class PhaseMassMonitor final : public Monitor {
  public:
   bool readsParticles() const override { return false; }  // (fields and reduced sums only)
@@ -48,7 +61,7 @@ class PhaseMassMonitor final : public Monitor {
     const int i = phase_.index(f);
     const double rho = f.phaseDensity(i);
     const parallel::RankReductionScope ranks(f.decomposition());
-    const double mass = rho * vof::phaseVolume(f.phaseFraction(i), f.couplingFields().voidFraction);
+    const double mass = rho * vof::phaseVolume(f.phaseFraction(i), openVoidFraction(f));
     const double out = rho * f.phaseOutflowVolume(i);
     if (!started_) {
       initial_ = mass + out;
