@@ -191,6 +191,37 @@ TEST(VofStep, PhaseMassAndInterfaceMonitors) {
   EXPECT_THROW(oil->sample(state), CaseError);
 }
 
+// phase_mass counts the open cells only: blocked cells carry no flux, and a smoothed void fraction
+// that reaches into them (coupling.smoothing_length) must not change a phase's mass.
+TEST(VofStep, PhaseMassLeavesBlockedCellsOut) {
+  const std::string yaml =
+      "domain: {min: [0, 0, 0], max: [0.1, 0.2, 0.005]}\n"
+      "fluid:\n"
+      "  cells: [20, 40, 1]\n"
+      "  vof:\n"
+      "    phases:\n"
+      "      - {name: air, density: 1.0, viscosity: 1.0e-5}\n"
+      "      - {name: water, density: 1000.0, viscosity: 1.0e-3}\n"
+      "    regions:\n"
+      "      - {phase: water, min: [0, 0, 0], max: [0.1, 0.1, 1]}\n"
+      "  blocked:\n"
+      "    - {shape: box, min: [0.09, 0.0, 0], max: [0.1, 0.2, 1]}\n";
+  auto c = makeCase(yaml, Vec3{0.0, -kG, 0.0});
+  Solver& s = *c.solver;
+  RunState state;
+  state.fluid = &s;
+  Params pm = Params::loadString("phase: water\n", "m.yaml");
+  auto mass = Registry<Monitor>::instance().createByName("phase_mass", pm);
+  const double open = 1000.0 * 0.09 * 0.1 * 0.005;  // the water outside the blocked column
+  EXPECT_NEAR(mass->sample(state)[0], open, 1e-14);
+  Field& eps = s.couplingFields().voidFraction;
+  for (int y = 0; y < 40; ++y)
+    for (int x = 18; x < 20; ++x) eps(x, y, 0) = 0.7;  // solid fraction smoothed into the wall
+  const auto m = mass->sample(state);
+  EXPECT_NEAR(m[0], open, 1e-14);
+  EXPECT_NEAR(m[3], 0.0, 1e-15);
+}
+
 // A water disc carried by a uniform stream of air (periodic, no gravity, no viscosity): the
 // momentum moves with the mass that the transport moves, so the control volumes' masses change by
 // exactly the mass fluxes and the velocity stays the stream's to round-off while the disc (1000:1)
