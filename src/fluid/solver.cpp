@@ -451,6 +451,10 @@ void Solver::step(double dt) {
     epsStep_ = coupling_.voidFraction;
     epsStepOnes_ = uniform;
   }
+  finishStep(dt);
+}
+
+void Solver::finishStep(double dt) {
   epsStepKept_ = true;
   dtPrev_ = dt;
   lastDt_ = dt;

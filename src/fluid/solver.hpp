@@ -235,6 +235,9 @@ class Solver {
   double correctMomentum(double dt, double gamma0);
   // scalar.cpp
   void advanceScalar(double dt);
+  /// The end of a step (single fluid or VOF): the step's bookkeeping (eps kept, step sizes, time,
+  /// count) and the passive scalar.
+  void finishStep(double dt);
 
   CartesianGrid grid_;
   std::shared_ptr<const parallel::Decomposition> decomposition_;  // (shared with bc_: survives moves)

@@ -440,12 +440,7 @@ void Solver::stepVof(double dt) {
   epsOlderOnes_ = uniform;
   epsStep_ = coupling_.voidFraction;
   epsStepOnes_ = uniform;
-  epsStepKept_ = true;
-  dtPrev_ = dt;
-  lastDt_ = dt;
-  time_ += dt;
-  ++steps_;
-  if (scalarEnabled_) advanceScalar(dt);
+  finishStep(dt);
 }
 
 }  // namespace gf::fluid
