@@ -156,7 +156,7 @@ SOLVER=multigrid case_for "$bed" "$work/mg4.yaml" 0.001 "1,2,2"
 SOLVER=multigrid case_for "$work/column_src.yaml" "$work/mgcolumn.yaml" 0.002 ""
 SOLVER=multigrid case_for "$work/column_src.yaml" "$work/mgcolumn2.yaml" 0.002 "2,1,1"
 run 1 "$work/mg.yaml" "$work/mg1"
-# (run.progress_interval longer than the run: off a terminal, rank 0 prints its final progress line only)
+# (run.progress_interval longer than the run: few progress lines in the log)
 sed 's/^run:/run:\n  progress_interval: 1.0e+6/' "$work/mg.yaml" > "$work/mgq.yaml"
 grep -q "progress_interval: 1.0e+6" "$work/mgq.yaml" || { echo "FAIL: could not set run.progress_interval"; exit 1; }
 "$mpiexec" --oversubscribe -n 2 "$grainflow" run "$work/mgq.yaml" --threads 1 --output "$work/mg2" >"$work/mg2.log" 2>&1 ||
@@ -168,10 +168,6 @@ close "$work/mg1" "$work/mg2" 1e-10 "bubbling bed, gathered multigrid: 2 ranks a
 close "$work/mg1" "$work/mg4" 1e-10 "bubbling bed, gathered multigrid: 4 ranks (1 x 2 x 2) against 1 rank" momentum_error
 close "$work/mgcolumn1" "$work/mgcolumn2" 1e-10 "sedimentation column, gathered multigrid: periodic x split between 2 ranks against 1 rank" momentum_error
 balanced "$work/mg4" "bubbling bed, gathered multigrid on 4 ranks: exchange balance"
-# (progress lines come from rank 0 only: one final line; the run.progress_interval key does not
-# enter the comparison, which reads the monitors)
-finals=$(tr '\r' '\n' < "$work/mg2.log" | grep -c "100.0 %" || true)
-[[ $finals == 1 ]] || { echo "FAIL: $finals final progress lines on 2 ranks (1 expected)"; cat "$work/mg2.log"; exit 1; }
 if grep -q hypre "$work/mg2.log"; then echo "FAIL: a 5,400-cell grid on 2 ranks went through hypre"; cat "$work/mg2.log"; exit 1; fi
 # Above gather_cells the pressure goes through hypre, with a notice.
 sed 's/^  pressure:/  pressure:\n    gather_cells: 100/' "$work/mg.yaml" > "$work/mgbig.yaml"
