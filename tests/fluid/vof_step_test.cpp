@@ -288,8 +288,10 @@ TEST(VofStep, DrainingTankClosesEachPhasesBalance) {
   EXPECT_NEAR(a + s.phaseOutflowVolume(0), a0, 1e-12 * w0);
 }
 
-// Every cases/vof_*.yaml runs shortened: those without particles through the solver (a few steps,
-// monitors finite), the packed bed through `grainflow run` (20 ms).
+// Every cases/vof_*.yaml runs shortened (vof_dam_break.yaml, vof_hydrostatic_tank.yaml,
+// vof_tank_drain_2d.yaml, vof_hydrostatic_packed_bed.yaml, vof_bed_drain.yaml, vof_tank_drain.yaml):
+// those without particles through the solver (a few steps, monitors finite), those with particles
+// through `grainflow run`.
 TEST(VofStep, ExampleCasesRunShortened) {
   int found = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::string(GRAINFLOW_SOURCE_DIR) + "/cases")) {
