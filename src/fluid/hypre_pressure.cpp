@@ -43,7 +43,7 @@ struct HyprePressure::Impl {
   HYPRE_StructSolver pcg = nullptr, pfmg = nullptr;
   std::array<HYPRE_Int, 3> lower{}, upper{};  // the box, inclusive upper corner
   // The preconditioner's gauge (singular problems): z = PFMG(r), then the mean over the coupled
-  // cells removed, as MultigridPoisson::precondition does. Without it, round-off lets the
+  // cells removed, as the multigrid's preconditioner does (MultigridPoisson::solveMgpcg). Without it, round-off lets the
   // preconditioned residual pick up the constant null vector, which PFMG's relaxation on the
   // coarsest (singular) level does not damp, and CG breaks down (alpha <= 0) before the tolerance.
   bool gauge = false;

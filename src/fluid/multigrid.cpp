@@ -21,7 +21,7 @@ constexpr int kCoarsestSweeps = 40;
 // Multigrid levels are threaded from this many grid lines (a 32^3 level: 1024 lines, about 30 us
 // per half-sweep, enough to pay for a parallel region; the fluid loops' default is 2048).
 constexpr std::int64_t kLevelSerialBelow = 512;
-// solveTeam: grids below kSerialCellsBelow cells, team members own at least this many fine cells.
+// Teams of the pressure solve: grids below kSerialCellsBelow cells, members own at least this many fine cells.
 constexpr std::int64_t kTeamCellsPerThread = 1500;
 }  // namespace
 
@@ -107,7 +107,7 @@ void MultigridPoisson::setup(const std::array<int, 3>& n, const std::array<bool,
     L.b.resize(L.cells());
   }
   const std::size_t N = F.cells();
-  for (auto* v : {&xInternal_, &bInternal_, &r_, &z_, &p_, &q_}) v->resize(N);
+  for (auto* v : {&xInternal_, &bInternal_, &p_, &q_}) v->resize(N);
   // The fine coefficients (copied into the internal axis order), the fine diagonal, level 1's
   // coefficients and diagonal: split by planes on a small grid's team (setupTeam_ times it
   // against one thread), one value per thread and entry: the same values for any team size.
@@ -570,22 +570,6 @@ void MultigridPoisson::applyLevel(const PoissonLevel& L, const std::vector<doubl
   });
 }
 
-double MultigridPoisson::applyLevelDot(const PoissonLevel& L, const std::vector<double>& xv, std::vector<double>& yv) {
-  // Partial sums per grid line, added in line order: the same result for any thread count.
-  const int nx = L.n[0], ny = L.n[1], nz = L.n[2];
-  const auto lines = static_cast<std::int64_t>(ny) * nz;
-  lineSums_.resize(static_cast<std::size_t>(lines));
-  parallelForAbove(lines, kLevelSerialBelow, [&](std::int64_t line) {
-    const int j = static_cast<int>(line % ny), k = static_cast<int>(line / ny);
-    const std::size_t base = static_cast<std::size_t>(nx) * line;
-    double* y = yv.data() + base;
-    applyLine(L, xv.data(), y, j, k, zeros_.data());
-    const double* x = xv.data() + base;
-    lineSums_[static_cast<std::size_t>(line)] = serialSum4(nx, [&](std::int64_t i) { return x[i] * y[i]; });
-  });
-  return sumOfPartials(lineSums_);
-}
-
 namespace {
 template <bool CONSTANT, int Y>
 [[gnu::always_inline]] inline void relaxLineImpl(PoissonLevel& L, int j, int k, int colour, const LineStencil& st, const double* zeros) {
@@ -801,41 +785,6 @@ void MultigridPoisson::vcycle(int l) {
   }
 }
 
-double MultigridPoisson::precondition() {
-  // z_ = one V-cycle applied to r_ (without copies: r_ and z_ are swapped in and out of the fine
-  // level), projected to zero mean when singular, fused with the dot product r_ . z_.
-  PoissonLevel& L = levels_[0];
-  L.b.swap(r_);
-  vcycle(0);
-  L.b.swap(r_);
-  L.x.swap(z_);
-  const auto n = static_cast<std::int64_t>(z_.size());
-  double* z = z_.data();
-  const double* r = r_.data();
-  if (!singular_ || activeCells_ == 0.0) return gf::dot(r, z, n, elementSums());
-  // Constant coefficients and every cell active (a closed box of single-phase flow): the
-  // projection is a full pass that changes nothing CG needs. A constant added to z changes neither
-  // r . z (r has zero mean) nor A p (constants are A's null space), the coarsest solve keeps that
-  // constant small (zero-mean solution, factorCoarsest), and solveInternal removes x's mean at the
-  // end. (Other singular problems keep it: blocked cells must stay 0.)
-  if (L.constantT && activeCells_ == static_cast<double>(L.cells())) return gf::dot(r, z, n, elementSums());
-  const double* inv = L.invDiag.data();
-  const double mean = globalSum(n, elementSums(), [&](std::int64_t i) { return inv[i] > 0.0 ? z[i] : 0.0; }) / activeCells_;
-  return globalSum(n, elementSums(), [&](std::int64_t i) {
-    z[i] = inv[i] > 0.0 ? z[i] - mean : 0.0;
-    return r[i] * z[i];
-  });
-}
-
-void MultigridPoisson::removeMean(std::vector<double>& v) const {
-  const PoissonLevel& L = levels_[0];
-  const auto n = static_cast<std::int64_t>(v.size());
-  const double count = activeCells_;
-  if (count == 0.0) return;
-  const double mean = globalSum(n, elementSums(), [&](std::int64_t i) { return L.invDiag[i] > 0.0 ? v[i] : 0.0; }) / count;
-  parallelForElements(n, [&](std::int64_t i) { v[i] = L.invDiag[i] > 0.0 ? v[i] - mean : 0.0; });
-}
-
 void MultigridPoisson::apply(const std::vector<double>& x, std::vector<double>& y) const {
   if (callerCell_.empty()) return applyLevel(levels_[0], x, y);
   std::vector<double> xi(callerCell_.size()), yi(callerCell_.size());
@@ -844,101 +793,49 @@ void MultigridPoisson::apply(const std::vector<double>& x, std::vector<double>& 
   for (std::size_t c = 0; c < yi.size(); ++c) y[callerCell_[c]] = yi[c];
 }
 
+bool MultigridPoisson::teamEligible() const {
+  return levels_.size() >= 2 && levels_[0].redBlackSafe && static_cast<std::int64_t>(levels_[0].cells()) < kSerialCellsBelow;
+}
+
 PoissonResult MultigridPoisson::solve(std::vector<double>& x, const std::vector<double>& b, double tol,
                                       int maxIterations) {
-  if (teamApplicable()) {
-    // (the team copies x and b into the internal cell order and x back, each member its lines)
-    const PoissonLevel& F = levels_[0];
-    const auto cells = static_cast<std::int64_t>(F.cells());
-    const int maxTeam = static_cast<int>(std::min<std::int64_t>(
-        {gf::threadCount(), F.n[2], levels_[1].n[2], std::max<std::int64_t>(1, cells / kTeamCellsPerThread)}));
-    const int team = team_.pick(maxTeam);
-    const double started = TeamTuner::now();
-    const PoissonResult r = solveTeam(x, b, tol, maxIterations, team);
-    // per iteration (+1: the setup of the residual): the iteration count varies from step to step
-    // (5-8 in the bubbling bed), which would otherwise decide the comparison of single probes
-    team_.record(team, (TeamTuner::now() - started) / (r.iterations + 1));
-    return r;
-  }
-  auto run = [&](std::vector<double>& xi, const std::vector<double>& bi) {
-    return solveInternal(xi, bi, tol, maxIterations);
-  };
-  if (callerCell_.empty()) return run(x, b);
-  const std::size_t N = callerCell_.size();
-  for (std::size_t c = 0; c < N; ++c) {
-    xInternal_[c] = x[callerCell_[c]];
-    bInternal_[c] = b[callerCell_[c]];
-  }
-  const PoissonResult result = run(xInternal_, bInternal_);
-  for (std::size_t c = 0; c < N; ++c) x[callerCell_[c]] = xInternal_[c];
-  return result;
+  if (!teamEligible()) return solveMgpcg(x, b, tol, maxIterations, 1);
+  // A small grid: one thread, or a team in one parallel region, whichever the tuner finds faster
+  // (speed only: the same result for either).
+  const PoissonLevel& F = levels_[0];
+  const auto cells = static_cast<std::int64_t>(F.cells());
+  const int maxTeam = static_cast<int>(std::min<std::int64_t>(
+      {gf::threadCount(), F.n[2], levels_[1].n[2], std::max<std::int64_t>(1, cells / kTeamCellsPerThread)}));
+  const int team = team_.pick(maxTeam);
+  const double started = TeamTuner::now();
+  const PoissonResult r = solveMgpcg(x, b, tol, maxIterations, team);
+  // per iteration (+1: the setup of the residual): the iteration count varies from step to step
+  // (5-8 in the bubbling bed), which would otherwise decide the comparison of single probes
+  team_.record(team, (TeamTuner::now() - started) / (r.iterations + 1));
+  return r;
 }
 
-PoissonResult MultigridPoisson::solveInternal(std::vector<double>& x, const std::vector<double>& b, double tol,
-                                              int maxIterations) {
-  PoissonResult result;
-  const auto n = static_cast<std::int64_t>(b.size());
-  std::copy(b.begin(), b.end(), r_.begin());
-  if (singular_) removeMean(r_);  // compatible right-hand side
-  const double bnorm = gf::norm(r_, elementSums());
-  if (bnorm == 0.0) {
-    std::fill(x.begin(), x.end(), 0.0);
-    return result;
-  }
-  applyLevel(levels_[0], x, q_);
-  parallelForElements(n, [&](std::int64_t i) { r_[i] -= q_[i]; });
-  if (singular_) removeMean(r_);
-  double rnorm = gf::norm(r_, elementSums());
-  result.relativeResidual = rnorm / bnorm;
-  if (result.relativeResidual <= tol) return result;
-  double rz = precondition();
-  p_ = z_;
-  for (int it = 1; it <= maxIterations; ++it) {
-    const double pq = applyLevelDot(levels_[0], p_, q_);
-    if (pq <= 0.0) break;
-    const double alpha = rz / pq;
-    double* xd = x.data();
-    double* rd = r_.data();
-    const double* pd = p_.data();
-    const double* qd = q_.data();
-    rnorm = std::sqrt(globalSum(n, elementSums(), [&](std::int64_t i) {
-      xd[i] += alpha * pd[i];
-      rd[i] -= alpha * qd[i];
-      return rd[i] * rd[i];
-    }));
-    result.iterations = it;
-    result.relativeResidual = rnorm / bnorm;
-    if (result.relativeResidual <= tol) break;
-    const double rzNew = precondition();
-    const double beta = rzNew / rz;
-    rz = rzNew;
-    parallelForElements(n, [&](std::int64_t i) { p_[i] = z_[i] + beta * p_[i]; });
-  }
-  result.converged = result.relativeResidual <= tol;
-  if (singular_) removeMean(x);
-  return result;
-}
-
-}  // namespace gf::fluid
-
-namespace gf::fluid {
-
-bool MultigridPoisson::teamApplicable() const {
-  return !singular_ && levels_.size() >= 2 && levels_[0].redBlackSafe &&
-         static_cast<std::int64_t>(levels_[0].cells()) < kSerialCellsBelow;
-}
-
-// MGPCG with the arithmetic of solveInternal + vcycle, in one parallel region. Member t owns the
-// fine planes [k0, k1) (grid lines j + ny k) and the coarse planes [K0, K1) of level 1, whose
-// right-hand sides (fused residual + restriction) it computes; levels >= 1 run on member 0.
-// r and z live in the fine level's b and x (no swaps). Red-black half-sweeps update only one
-// colour from the other: the same values for any split. Dot products: per-line sums (teamSums_)
-// added in line order by every member (same decisions everywhere, no extra barrier).
-PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::vector<double>& bv, double tol,
-                                          int maxIterations, int team) {
+// MGPCG (one V-cycle as the preconditioner), written once for both ways of threading it:
+//   - team > 1 (small grids): one parallel region; member t owns the fine planes [k0, k1) (grid
+//     lines j + ny k) and the coarse planes [K0, K1) of level 1, whose right-hand sides (fused
+//     residual + restriction) it computes; levels >= 1 run on member 0, between barriers;
+//   - team = 1: the calling thread, whose line loops (forLines) and V-cycle (vcycle(0)) thread
+//     themselves loop by loop (large grids; serial on a small grid's serial scope).
+// r and z live in the fine level's b and x (no copies). Red-black half-sweeps update only one
+// colour from the other, and the fused pairs of smoothPair give the values of two half-sweeps: the
+// same values for any split. Dot products and means: per-line sums (teamSums_) added in line order
+// by every member (the same decisions everywhere, no extra barrier; the same bits for any team size
+// or thread count).
+// Singular problems (pure Neumann or periodic): the right-hand side is made compatible (its mean
+// over the coupled cells removed), the preconditioned residual is projected to zero mean (except for
+// constant coefficients with every cell coupled, below) and so is the solution at the end.
+PoissonResult MultigridPoisson::solveMgpcg(std::vector<double>& xv, const std::vector<double>& bv, double tol,
+                                           int maxIterations, int team) {
   PoissonLevel& L = levels_[0];
-  PoissonLevel& C = levels_[1];
-  const std::array<int, 3> f = factors_[0];
+  const bool inTeam = team > 1;  // (solve picks a team only where teamEligible)
+  const bool twoLevels = levels_.size() >= 2;
+  const std::array<int, 3> f = twoLevels ? factors_[0] : std::array<int, 3>{1, 1, 1};
+  PoissonLevel& C = levels_[twoLevels ? 1 : 0];
   const int nx = L.n[0], ny = L.n[1], nz = L.n[2];
   const int cx = C.n[0], cy = C.n[1], cz = C.n[2];
   const auto lines = static_cast<std::size_t>(ny) * nz;
@@ -957,33 +854,57 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
   double* z = L.x.data();  // preconditioned residual (the fine level's solution)
   double* p = p_.data();
   double* q = q_.data();
+  const double* inv = L.invDiag.data();  // 0: a cell without coupling (blocked), left out of means
   const double* zeros = zeros_.data();
+  const bool gauge = singular_ && activeCells_ > 0.0;
+  // Constant coefficients and every cell coupled (a closed box of single-phase flow): z's
+  // projection would be a full pass that changes nothing CG needs. A constant added to z changes
+  // neither r . z (r has zero mean) nor A p (constants are A's null space), the coarsest solve keeps
+  // that constant small (zero-mean solution, factorCoarsest), and x's mean goes at the end. (Other
+  // singular problems keep it: blocked cells must stay 0.)
+  const bool zGauge = gauge && !(L.constantT && activeCells_ == static_cast<double>(L.cells()));
   gf::TeamBarrier barrier(team);  // (~96 per call: a spin barrier, core/parallel.hpp)
   auto member = [&]() {
-    const int t = team > 1 ? omp_get_thread_num() : 0;
-    const int members = team > 1 ? omp_get_num_threads() : 1;  // fewer than asked: still all planes
+    const int t = inTeam ? omp_get_thread_num() : 0;
+    const int members = inTeam ? omp_get_num_threads() : 1;  // fewer than asked: still all planes
     const std::int64_t lb = static_cast<std::int64_t>(ny) * (nz * t / members);
     const std::int64_t le = static_cast<std::int64_t>(ny) * (nz * (t + 1) / members);
     const int K0 = cz * t / members, K1 = cz * (t + 1) / members;
     double* lineR = lineBuffer_.data() + stride * static_cast<std::size_t>(t);
+    // The member's grid lines: its own planes in a team, else every line, threaded loop by loop.
+    auto forLines = [&](auto&& body) {
+      if (inTeam) {
+        for (std::int64_t line = lb; line < le; ++line) body(line);
+      } else {
+        parallelForAbove(static_cast<std::int64_t>(lines), kLevelSerialBelow, body);
+      }
+    };
     auto sum = [&](int which) { return sumOfPartials(teamSums_[which]); };
     auto lineDot = [&](const double* a, const double* c, std::int64_t line) {
       const std::size_t base = static_cast<std::size_t>(nx) * line;
       return serialSum4(nx, [&](std::int64_t i) { return a[base + i] * c[base + i]; });
     };
+    auto lineCoupledSum = [&](const double* a, std::int64_t line) {
+      const std::size_t base = static_cast<std::size_t>(nx) * line;
+      return serialSum4(nx, [&](std::int64_t i) { return inv[base + i] > 0.0 ? a[base + i] : 0.0; });
+    };
+    auto subtractOnLine = [&](double* a, double mean, std::int64_t line) {
+      const std::size_t base = static_cast<std::size_t>(nx) * line;
+      for (int i = 0; i < nx; ++i) a[base + i] = inv[base + i] > 0.0 ? a[base + i] - mean : 0.0;
+    };
     auto halfSweep = [&](int colour) {
       for (std::int64_t line = lb; line < le; ++line)
         relaxLine(L, static_cast<int>(line % ny), static_cast<int>(line / ny), colour);
     };
-    // z = one V-cycle applied to r (vcycle(0) with kPreSmooth red-black pairs before, kPostSmooth
-    // black-red pairs after).
+    // z = one V-cycle applied to r, then r . z. In a team, vcycle(0)'s steps with the members'
+    // planes: kPreSmooth red-black pairs before, kPostSmooth black-red pairs after.
     // The V-cycle's first step (z = 0, then the first red half-sweep) reads only the member's own
     // lines of r: it is run right after the member's r update, before the barrier that completes
     // the norms (nobody reads z between the previous V-cycle's last barrier and the next one; if
     // the norm then says converged, z is not used). One barrier less per iteration (one thread:
     // after the check, no sweep for nothing on convergence).
-    const bool earlySweep = members > 1;
-    auto vcycle0 = [&]() {
+    const bool earlySweep = inTeam && members > 1;
+    auto vcycleTeam = [&]() {
       if (!earlySweep) firstHalfSweepFromZero(L, lb, le);
       halfSweep(1);
       barrier.wait();
@@ -1028,8 +949,21 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
         barrier.wait();
         halfSweep(0);
       }
-      // r . z of the own lines (the last half-sweep wrote only own values of z).
-      for (std::int64_t line = lb; line < le; ++line) teamSums_[3][static_cast<std::size_t>(line)] = lineDot(r, z, line);
+    };
+    auto precondition = [&]() {
+      if (inTeam) vcycleTeam();
+      else vcycle(0);
+      if (zGauge) {  // (the last half-sweep wrote only own values of z)
+        forLines([&](std::int64_t line) { teamSums_[4][static_cast<std::size_t>(line)] = lineCoupledSum(z, line); });
+        barrier.wait();
+        const double mean = sum(4) / activeCells_;
+        forLines([&](std::int64_t line) {
+          subtractOnLine(z, mean, line);
+          teamSums_[3][static_cast<std::size_t>(line)] = lineDot(r, z, line);
+        });
+      } else {
+        forLines([&](std::int64_t line) { teamSums_[3][static_cast<std::size_t>(line)] = lineDot(r, z, line); });
+      }
       barrier.wait();
       return sum(3);
     };
@@ -1038,68 +972,101 @@ PoissonResult MultigridPoisson::solveTeam(std::vector<double>& xv, const std::ve
       double* bi = bInternal_.data();
       const double* xc = xv.data();
       const double* bc = bv.data();
-      for (auto c = static_cast<std::size_t>(nx * lb); c < static_cast<std::size_t>(nx * le); ++c) {
-        xi[c] = xc[caller[c]];
-        bi[c] = bc[caller[c]];
-      }
+      forLines([&](std::int64_t line) {
+        for (auto c = static_cast<std::size_t>(nx * line); c < static_cast<std::size_t>(nx * (line + 1)); ++c) {
+          xi[c] = xc[caller[c]];
+          bi[c] = bc[caller[c]];
+        }
+      });
       barrier.wait();  // (A x reads the neighbouring members' planes of x)
     }
-    // r = b - A x; ||b||, ||r||.
-    for (std::int64_t line = lb; line < le; ++line) {
+    // r = b - A x; ||b||, ||r||. Singular: b's mean over the coupled cells removed first (a
+    // compatible right-hand side), then r's (round-off: A's columns sum to 0).
+    double bMean = 0.0;
+    if (gauge) {
+      forLines([&](std::int64_t line) { teamSums_[4][static_cast<std::size_t>(line)] = lineCoupledSum(b, line); });
+      barrier.wait();
+      bMean = sum(4) / activeCells_;
+    }
+    forLines([&](std::int64_t line) {
       const std::size_t base = static_cast<std::size_t>(nx) * line;
       applyLine(L, x, q + base, static_cast<int>(line % ny), static_cast<int>(line / ny), zeros);
-      for (int i = 0; i < nx; ++i) r[base + i] = b[base + i] - q[base + i];
-      teamSums_[0][static_cast<std::size_t>(line)] = lineDot(b, b, line);
-      teamSums_[1][static_cast<std::size_t>(line)] = lineDot(r, r, line);
+      if (gauge) {
+        for (int i = 0; i < nx; ++i) r[base + i] = (inv[base + i] > 0.0 ? b[base + i] - bMean : 0.0) - q[base + i];
+        teamSums_[0][static_cast<std::size_t>(line)] = serialSum4(nx, [&](std::int64_t i) {
+          const double bc = inv[base + i] > 0.0 ? b[base + i] - bMean : 0.0;
+          return bc * bc;
+        });
+        teamSums_[5][static_cast<std::size_t>(line)] = lineCoupledSum(r, line);
+      } else {
+        for (int i = 0; i < nx; ++i) r[base + i] = b[base + i] - q[base + i];
+        teamSums_[0][static_cast<std::size_t>(line)] = lineDot(b, b, line);
+        teamSums_[1][static_cast<std::size_t>(line)] = lineDot(r, r, line);
+      }
+    });
+    if (gauge) {
+      barrier.wait();
+      const double rMean = sum(5) / activeCells_;
+      forLines([&](std::int64_t line) {
+        subtractOnLine(r, rMean, line);
+        teamSums_[1][static_cast<std::size_t>(line)] = lineDot(r, r, line);
+      });
     }
-    if (earlySweep) firstHalfSweepFromZero(L, lb, le);  // vcycle0's first step
+    if (earlySweep) firstHalfSweepFromZero(L, lb, le);  // the V-cycle's first step
     barrier.wait();
     const double bnorm = std::sqrt(sum(0));
     double rnorm = std::sqrt(sum(1));
     int iterations = 0;
     double relative = bnorm > 0.0 ? rnorm / bnorm : 0.0;
     if (bnorm == 0.0) {
-      std::fill(x + nx * lb, x + nx * le, 0.0);
+      forLines([&](std::int64_t line) { std::fill(x + nx * line, x + nx * (line + 1), 0.0); });
     } else if (relative > tol) {
-      double rz = vcycle0();
-      for (std::int64_t line = lb; line < le; ++line)
-        std::copy(z + nx * line, z + nx * (line + 1), p + nx * line);
+      double rz = precondition();
+      forLines([&](std::int64_t line) { std::copy(z + nx * line, z + nx * (line + 1), p + nx * line); });
       for (int it = 1; it <= maxIterations; ++it) {
         barrier.wait();  // p complete
-        for (std::int64_t line = lb; line < le; ++line) {
+        forLines([&](std::int64_t line) {
           applyLine(L, p, q + nx * line, static_cast<int>(line % ny), static_cast<int>(line / ny), zeros);
           teamSums_[2][static_cast<std::size_t>(line)] = lineDot(p, q, line);
-        }
+        });
         barrier.wait();
         const double pq = sum(2);
         if (pq <= 0.0) break;
         const double alpha = rz / pq;
-        for (std::int64_t line = lb; line < le; ++line) {
+        forLines([&](std::int64_t line) {
           const std::size_t base = static_cast<std::size_t>(nx) * line;
           for (int i = 0; i < nx; ++i) {
             x[base + i] += alpha * p[base + i];
             r[base + i] -= alpha * q[base + i];
           }
           teamSums_[1][static_cast<std::size_t>(line)] = lineDot(r, r, line);
-        }
-        if (earlySweep) firstHalfSweepFromZero(L, lb, le);  // vcycle0's first step
+        });
+        if (earlySweep) firstHalfSweepFromZero(L, lb, le);  // the V-cycle's first step
         barrier.wait();
         rnorm = std::sqrt(sum(1));
         iterations = it;
         relative = rnorm / bnorm;
         if (relative <= tol) break;
-        const double rzNew = vcycle0();
+        const double rzNew = precondition();
         const double beta = rzNew / rz;
         rz = rzNew;
-        for (std::int64_t line = lb; line < le; ++line) {
+        forLines([&](std::int64_t line) {
           const std::size_t base = static_cast<std::size_t>(nx) * line;
           for (int i = 0; i < nx; ++i) p[base + i] = z[base + i] + beta * p[base + i];
-        }
+        });
       }
+    }
+    if (gauge && bnorm > 0.0) {  // x's mean over the coupled cells removed (own lines of x)
+      forLines([&](std::int64_t line) { teamSums_[5][static_cast<std::size_t>(line)] = lineCoupledSum(x, line); });
+      barrier.wait();
+      const double xMean = sum(5) / activeCells_;
+      forLines([&](std::int64_t line) { subtractOnLine(x, xMean, line); });
     }
     if (permuted) {  // the member's lines of x are final
       double* xc = xv.data();
-      for (auto c = static_cast<std::size_t>(nx * lb); c < static_cast<std::size_t>(nx * le); ++c) xc[caller[c]] = x[c];
+      forLines([&](std::int64_t line) {
+        for (auto c = static_cast<std::size_t>(nx * line); c < static_cast<std::size_t>(nx * (line + 1)); ++c) xc[caller[c]] = x[c];
+      });
     }
     if (t == 0) {
       result.iterations = iterations;

@@ -67,15 +67,15 @@ class MultigridPoisson {
   void apply(const std::vector<double>& x, std::vector<double>& y) const;
 
  private:
-  PoissonResult solveInternal(std::vector<double>& x, const std::vector<double>& b, double relativeTolerance,
-                              int maxIterations);
-  /// solveInternal for small non-singular grids in one parallel region (multigrid_team in
-  /// multigrid.cpp): the threads split the planes of the fine level, coarser levels run on one
-  /// thread; the same result for any team size (sums per grid line, in line order). x and b are
-  /// in the caller's cell order (the members copy their lines into and out of the internal one).
-  bool teamApplicable() const;
-  PoissonResult solveTeam(std::vector<double>& x, const std::vector<double>& b, double relativeTolerance,
-                          int maxIterations, int team);
+  /// Small grids (below kSerialCellsBelow cells, two levels or more, red-black colourable): solve
+  /// may run the solver as a team in one parallel region (solveMgpcg).
+  bool teamEligible() const;
+  /// MGPCG in one implementation for a team of `team` threads in one parallel region (the members
+  /// split the planes of the fine level, coarser levels run on member 0) or, team = 1, for the
+  /// calling thread with loops that thread themselves: the same result for any team size and
+  /// thread count (sums per grid line, in line order). x and b are in the caller's cell order.
+  PoissonResult solveMgpcg(std::vector<double>& x, const std::vector<double>& b, double relativeTolerance,
+                           int maxIterations, int team);
   void buildDiagonal(PoissonLevel& L, const std::array<bool, 6>& dirichlet) const;
   // buildDiagonal in parts: constantT / redBlackSafe (whole level), sizes, grid lines (threads
   // may split the lines).
@@ -97,19 +97,13 @@ class MultigridPoisson {
   void factorCoarsest();
   void solveCoarsest(PoissonLevel& L) const;
   void vcycle(int level);
-  /// z_ = M^-1 r_ (one V-cycle, zero mean when singular); returns r_ . z_.
-  double precondition();
-  /// y = A x on level L; returns x . y (per-line partial sums in line order).
-  double applyLevelDot(const PoissonLevel& L, const std::vector<double>& x, std::vector<double>& y);
-  void removeMean(std::vector<double>& v) const;
 
   std::vector<PoissonLevel> levels_;
   std::vector<std::array<int, 3>> factors_;  // coarsening factor from level l to l+1
   std::array<bool, 6> dirichlet_{};
   bool singular_ = true;
   double activeCells_ = 0.0;  // fine cells with a non-zero diagonal
-  std::vector<double> r_, z_, p_, q_;
-  std::vector<double> lineSums_;    // per-line partial sums of applyLevelDot
+  std::vector<double> p_, q_;       // CG direction and A p (r and z live in the fine level's b and x)
   std::vector<double> lineBuffer_;  // per-thread residual line of the fused restriction
   // Internally the longest axis is the fastest-varying one (a 2 x 30 x 90 bed is stored as
   // 90 x 2 x 30: long grid lines, little per-line overhead); perm_[internal axis] = caller's axis,
@@ -118,8 +112,8 @@ class MultigridPoisson {
   std::vector<std::size_t> callerCell_;
   std::vector<double> xInternal_, bInternal_;
   std::vector<double> zeros_;           // zero coefficient line (missing neighbours), n_x + 1 long
-  std::vector<double> teamSums_[4];     // per-line partial sums of the team solve (b.b, r.r, p.Ap, r.z)
-  TeamTuner team_;                      // one thread or a team for solveTeam (speed only)
+  std::vector<double> teamSums_[6];     // per-line partial sums of solveMgpcg (b.b, r.r, p.Ap, r.z, two for means)
+  TeamTuner team_;                      // one thread or a team for solveMgpcg (speed only)
   TeamTuner setupTeam_;                 // one thread or a team for setup's fine levels (speed only)
   std::array<int, 3> callerN_{0, 0, 0};  // grid of callerCell_
   std::vector<double> coarseCholesky_;  // dense Cholesky factor of the coarsest level (empty: GS sweeps)

@@ -1,4 +1,4 @@
-// Thread teams of small coupled grids (fluid/momentum_team.cpp, MultigridPoisson::solveTeam):
+// Thread teams of small coupled grids (fluid/momentum_team.cpp, MultigridPoisson::solveMgpcg):
 // the results must not depend on the thread count (the TeamTuner switches between one thread and
 // the team at run time), and the projection must still meet continuity.
 #include <gtest/gtest.h>
