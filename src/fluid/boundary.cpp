@@ -48,6 +48,8 @@ void forEachLine(const Field& f, int axis, const GhostPlanes& planes, Body&& bod
 
 }  // namespace
 
+const char* sideName(int s) { return kSideNames[s]; }
+
 Boundaries Boundaries::read(Params& fluid, const std::array<bool, 3>& periodic, bool twoD) {
   Boundaries bc;
   Params sec = fluid.section({"boundaries", "-", "boundary condition per box face (x_min, x_max, y_min, ...)"});
@@ -77,6 +79,10 @@ Boundaries Boundaries::read(Params& fluid, const std::array<bool, 3>& periodic, 
                                "it whatever eps is in the first cell; the face velocity is velocity / eps_f); "
                                "false: the face (interstitial) velocity is prescribed"},
                               true);
+    b.phase = p.text({"phase", "-",
+                      "with fluid.vof: the phase entering through this inlet, or through this outlet where the flow "
+                      "turns inwards (an inlet per phase); default: fluid.vof.inflow_phase"},
+                     "");
     if (type == "wall") b.type = BoundaryType::Wall;
     else if (type == "slip") b.type = BoundaryType::Slip;
     else if (type == "inlet") b.type = BoundaryType::Inlet;

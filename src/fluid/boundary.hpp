@@ -24,6 +24,7 @@ struct BoundarySide {
   double scalarValue = 0.0;  // Dirichlet value of the passive scalar where scalarFixed
   double rampTime = 0.0;     // inlet/wall velocity multiplied by min(1, t / rampTime); 0 = no ramp
   bool superficial = true;   // inlet: `velocity` is superficial (face flux eps_f u_f = U), not interstitial
+  std::string phase;         // fluid.vof: the phase entering through this side (empty: fluid.vof.inflow_phase)
 };
 
 /// Factor of a side's prescribed velocity at time t: min(1, t / rampTime) (1 without ramp).
@@ -32,6 +33,8 @@ inline double rampFactor(const BoundarySide& s, double t) {
 }
 
 inline int sideIndex(int axis, int side) { return 2 * axis + side; }
+/// The case-file name of side s = sideIndex(axis, side): x_min, x_max, y_min, y_max, z_min, z_max.
+const char* sideName(int s);
 inline bool isOutlet(BoundaryType t) { return t == BoundaryType::PressureOutlet || t == BoundaryType::Outflow; }
 
 struct Boundaries {

@@ -351,6 +351,7 @@ class Solver {
   vof::TransportSettings vofSettings_;
   double vofCourant_ = 0.5;
   int vofInflowPhase_ = 0;
+  std::array<int, 6> vofSidePhase_{};  // per side: the phase entering there (boundaries.<side>.phase)
   int vofSubsteps_ = 0;
   std::vector<double> phaseOutflow_, phaseOutflowRate_;
 };

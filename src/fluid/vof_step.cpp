@@ -49,7 +49,13 @@
 namespace gf::fluid {
 
 void Solver::readVof(Params& fluid) {
-  if (!fluid.documenting() && !fluid.has("vof")) return;
+  if (!fluid.documenting() && !fluid.has("vof")) {
+    for (int s = 0; s < 6; ++s)
+      if (!bc_.side[s].phase.empty())
+        fluid.section({"boundaries"}).section({sideName(s)}).fail("phase", "'" + bc_.side[s].phase + "'",
+                                                                 "no phase: the case has no fluid.vof");
+    return;
+  }
   Params v = fluid.section({"vof", "-",
                             "several immiscible fluids by volume of fluid (docs/vof.md): phase fractions moved by the "
                             "fluid's fluxes, mixture density and viscosity, modified pressure p* = p - rho g.x"});
@@ -106,6 +112,19 @@ void Solver::readVof(Params& fluid) {
     vofInflowPhase_ = phaseIndex(inflow);
     if (vofInflowPhase_ < 0) v.fail("inflow_phase", "'" + inflow + "'", "one of the phases: " + names());
   }
+  // An inlet per phase: boundaries.<side>.phase names what enters through that side.
+  for (int s = 0; s < 6; ++s) {
+    vofSidePhase_[static_cast<std::size_t>(s)] = vofInflowPhase_;
+    const std::string& name = bc_.side[s].phase;
+    if (name.empty()) continue;
+    Params side = fluid.section({"boundaries"}).section({sideName(s)});
+    const BoundaryType t = bc_.domainSide(s / 2, s % 2);
+    if (!(isOutlet(t) || t == BoundaryType::Inlet))
+      side.fail("phase", "'" + name + "' on a closed or periodic side", "no phase (only inlets and outlets let a phase in)");
+    const int idx = phaseIndex(name);
+    if (idx < 0) side.fail("phase", "'" + name + "'", "one of the phases of fluid.vof: " + names());
+    vofSidePhase_[static_cast<std::size_t>(s)] = idx;
+  }
   if (correctors_ != 1)
     fluid.fail("correctors", fmt::format("{} with fluid.vof", correctors_), "1 (the VOF step has one projection)");
   if (driveMode_ == DrivingMode::FlowRate)
@@ -142,10 +161,9 @@ int Solver::phaseIndex(const std::string& name) const {
 
 vof::Sides Solver::vofSides() const {
   // The fluid's sides as the transport sees them: shared cuts and periodic wraps as they are,
-  // inlets and outlets open (what enters carries the inflow phase), walls and slip walls closed.
+  // inlets and outlets open (what enters carries the side's phase: boundaries.<side>.phase or
+  // fluid.vof.inflow_phase), walls and slip walls closed.
   vof::Sides sides;
-  std::vector<double> inflow(phases_.size(), 0.0);
-  if (!inflow.empty()) inflow[static_cast<std::size_t>(vofInflowPhase_)] = 1.0;
   for (int a = 0; a < 3; ++a)
     for (int s = 0; s < 2; ++s) {
       const auto k = static_cast<std::size_t>(2 * a + s);
@@ -154,7 +172,8 @@ vof::Sides Solver::vofSides() const {
       else if (t == BoundaryType::Periodic) sides.side[k] = vof::SideType::Periodic;
       else if (isOutlet(t) || t == BoundaryType::Inlet) {
         sides.side[k] = vof::SideType::Open;
-        sides.inflow[k] = inflow;
+        sides.inflow[k].assign(phases_.size(), 0.0);
+        if (!phases_.empty()) sides.inflow[k][static_cast<std::size_t>(vofSidePhase_[k])] = 1.0;
       } else sides.side[k] = vof::SideType::Wall;
     }
   return sides;
@@ -332,6 +351,34 @@ void Solver::transportPhases(double dt) {
           phi(i, j, k) = 0.5 * (E[cc] + E[cc - se]) * u(i, j, k);
         }
   }
+  // Inlet faces: the flux of the last projection, which took the inlet velocity at t^n. This
+  // step's ghost fill has already set the faces to t^{n+1}'s (a ramp), and to U / eps_f with the
+  // new eps (superficial inlets): with the interior's fluxes of t^n those would not balance, and
+  // each phase would gain dt (U^{n+1} - U^n) A per step. (A face the fill left at 0, blocked or
+  // at rest, stays 0.)
+  Boundaries last = bc_;
+  last.time = time_;
+  for (int a = 0; a < dims; ++a)
+    for (int s = 0; s < 2; ++s) {
+      const BoundarySide& side = bc_.at(a, s);
+      if (side.type != BoundaryType::Inlet) continue;
+      Field& phi = vofFlux_[a];
+      const auto& pts = phi.points();
+      const std::ptrdiff_t se = p_.stride(a);
+      int lo[3] = {0, 0, 0}, hi[3] = {pts[0], pts[1], pts[2]};
+      lo[a] = s == 0 ? 0 : grid_.cells[a];
+      hi[a] = lo[a] + 1;
+      for (int k = lo[2]; k < hi[2]; ++k)
+        for (int j = lo[1]; j < hi[1]; ++j)
+          for (int i = lo[0]; i < hi[0]; ++i) {
+            if (u_[a](i, j, k) == 0.0) continue;
+            Vec3 x = grid_.cellCentre(i, j, k);
+            x[a] -= 0.5 * grid_.spacing[a];
+            const double un = inletNormalVelocity(last, a, s, grid_, x);
+            const std::size_t cc = p_.index(i, j, k);
+            phi(i, j, k) = side.superficial ? un : 0.5 * (E[cc] + E[cc - se]) * un;
+          }
+    }
   vofEps_.data() = coupling_.voidFractionOld.data();
   const vof::Sides sides = vofSides();
   const vof::GhostFill fill =
