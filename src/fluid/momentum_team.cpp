@@ -17,6 +17,7 @@
 #include "fluid/loops.hpp"
 #include "fluid/solver.hpp"
 #include "fluid/staggered_eps.hpp"
+#include "parallel/halo.hpp"
 
 namespace gf::fluid {
 
@@ -112,8 +113,11 @@ void jacobiSweepRows(const Field& x, Field& y, const double* B, const Row* rows,
 }  // namespace
 
 bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, double e1, double e2) {
-  // (a decomposed grid: loop by loop, its ghost fills exchange with the neighbour ranks)
-  if (uniformCoupling_ || twoD_ || bc_.periodic(2) || grid_.cells[2] < 2 || decomposition_->distributed()) return false;
+  if (uniformCoupling_ || twoD_ || bc_.periodic(2) || grid_.cells[2] < 2) return false;
+  // A decomposed grid: a team of one per rank (its MPI calls on the calling thread), the three
+  // components' ghosts exchanged with the neighbour ranks in one message per sweep, and the sums and
+  // the eps range combined across the ranks (every rank takes the same decisions).
+  const bool distributed = decomposition_->distributed();
   double offRatio = 0.0;
   for (int d = 0; d < 3; ++d) offRatio += 2.0 * mu_ / (grid_.spacing[d] * grid_.spacing[d]);
   offRatio /= rho_ * g0 / dt + offRatio;
@@ -123,7 +127,7 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
   // and kTeamCellsPerThread cells.
   const std::int64_t cells = grid_.interiorCellCount();
   int team = std::min<std::int64_t>({gf::threadCount(), nz / 2, std::max<std::int64_t>(1, cells / kTeamCellsPerThread)});
-  team = momentumTeam_.pick(std::max(team, 1));
+  team = distributed ? 1 : momentumTeam_.pick(std::max(team, 1));
   const double started = TeamTuner::now();
   if (cellDivergence_.data().size() != p_.data().size()) cellDivergence_ = Field(grid_);
   for (int c = 0; c < 3; ++c) {
@@ -226,8 +230,11 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
         Y[q] = unknown ? Y[q] : un;
         Uo[q] = un;
       }
-      const auto& pts = x.points();
-      fillVelocityStencilGhostsSlab(x, c, bc_, slab.k0, slab.planeEnd(pts), slab.first, slab.last);
+    }
+    if (distributed) parallel::fillGhosts(std::vector<Field*>{&u_[0], &u_[1], &u_[2]}, *decomposition_);
+    for (int c = 0; c < 3; ++c) {
+      const auto& pts = u_[c].points();
+      fillVelocityStencilGhostsSlab(u_[c], c, bc_, slab.k0, slab.planeEnd(pts), slab.first, slab.last);
     }
     barrier.wait();
     // Every member takes the same decisions from the same line sums (no further communication).
@@ -238,6 +245,10 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
       for (int m = 1; m < members; ++m) {
         lo = std::min(lo, memberRange[2 * m]);
         hi = std::max(hi, memberRange[2 * m + 1]);
+      }
+      if (distributed) {
+        lo = -maxAcrossRanks(-lo);
+        hi = maxAcrossRanks(hi);
       }
       if (lo > 0.0) contraction = 12.0 * wMax * std::max(1.0, hi) / (timeCoeff * lo);
     }
@@ -261,6 +272,15 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
         jacobiSweepRows(x, y, rhs_[c].data().data(), jacobiRows_[c].data(), unknownList_[c].data(),
                         unknownLineStart_[c].data(), mu_, slab.lineBegin(pts), slab.lineEnd(pts),
                         teamPartial_[c][parity].data());
+      }
+      std::vector<Field*> swept;
+      for (int c = 0; c < 3; ++c)
+        if (active[c]) swept.push_back(inYLocal[c] ? &u_[c] : &precY_[c]);
+      if (distributed) parallel::fillGhosts(swept, *decomposition_);
+      for (int c = 0; c < 3; ++c) {
+        if (!active[c]) continue;
+        Field& y = inYLocal[c] ? u_[c] : precY_[c];
+        const auto& pts = y.points();
         fillVelocityStencilGhostsSlab(y, c, bc_, slab.k0, slab.planeEnd(pts), slab.first, slab.last);
       }
       barrier.wait();
