@@ -151,6 +151,10 @@ class Solver {
   double phaseOutflowVolume(int i) const { return phaseOutflow_[static_cast<std::size_t>(i)]; }
   /// Its rate over the last step (m^3/s).
   double phaseOutflowRate(int i) const { return phaseOutflowRate_[static_cast<std::size_t>(i)]; }
+  /// The void fraction the phase fractions hold their contents with: the eps^{n+1} of the last
+  /// step's continuity equation (a coupler may have moved the coupling fields on since), or the
+  /// coupling's before the first step. Phase masses are sum rho_i eps alpha_i V with it.
+  const Field& phaseVoidFraction() const { return epsStepKept_ ? epsStep_ : coupling_.voidFraction; }
   /// Substeps of the phase transport in the last step.
   int vofSubsteps() const { return vofSubsteps_; }
   /// Fill the phase fractions from a function of position (the phase of each cell centre), and
@@ -226,6 +230,7 @@ class Solver {
   void stepVof(double dt);
   void predictMomentumVof(double dt);
   void transportPhases(double dt);
+  void transportPhasesToProjection(double dt);
   void updateMixture();
   vof::Sides vofSides() const;
   // projection.cpp

@@ -439,6 +439,57 @@ void Solver::transportPhases(double dt) {
   }
 }
 
+void Solver::transportPhasesToProjection(double dt) {
+  // With moving particles the transport's fluxes phi^n took the fractions to eps* = eps^n - dt
+  // div(phi^n) = 2 eps^n - eps^{n-1}, while the step's continuity equation holds with the
+  // coupling's eps^{n+1}: a phase measured with eps^{n+1} would gain or lose alpha (eps^{n+1} - eps*) V
+  // in every cell where the particles' motion changes and alpha is not uniform. The projection's
+  // fluxes phi^{n+1} = eps^{n+1}_f u^{n+1} meet eps^n - dt div(phi^{n+1}) = eps^{n+1} (to the
+  // pressure solver's tolerance), so a second transport with dphi = phi^{n+1} - phi^n takes the
+  // contents from eps* on to eps^{n+1}: over the step the fractions move with phi^{n+1}, the
+  // conservative flux form is kept, and the phases' volumes measured with eps^{n+1} close with
+  // their outflow. No compression (dphi is not a velocity of the interface); the Lax-Wendroff
+  // correction and the limiter as in the step, so the bounds hold.
+  const int dims = twoD_ ? 2 : 3;
+  const double* E = coupling_.voidFraction.data().data();
+  for (int a = 0; a < dims; ++a) {
+    Field& phi = vofFlux_[a];  // phi^n on entry, dphi on exit
+    const Field& u = u_[a];
+    const auto& pts = u.points();
+    const std::ptrdiff_t se = p_.stride(a);
+    for (int k = 0; k < pts[2]; ++k)
+      for (int j = 0; j < pts[1]; ++j)
+        for (int i = 0; i < pts[0]; ++i) {
+          const std::size_t cc = p_.index(i, j, k);
+          phi(i, j, k) = 0.5 * (E[cc] + E[cc - se]) * u(i, j, k) - phi(i, j, k);
+        }
+  }
+  vofEps_.data() = transport_.transportedVoidFraction().data();  // eps* (interior; ghosts below)
+  const vof::Sides sides = vofSides();
+  const vof::GhostFill fill =
+      decomposition_->distributed() ? vof::decomposedFill(*decomposition_, sides) : vof::singleBoxFill(sides);
+  fill({&vofEps_});
+  const int n = phaseCount();
+  std::vector<double> outflow(static_cast<std::size_t>(n), 0.0);
+  auto afterSubstep = [&](double h) {
+    for (int a = 0; a < dims; ++a)
+      for (int s = 0; s < 2; ++s) {
+        const BoundaryType t = bc_.domainSide(a, s);
+        if (!(isOutlet(t) || t == BoundaryType::Inlet)) continue;
+        for (int i = 0; i < n; ++i)
+          outflow[static_cast<std::size_t>(i)] += h * transport_.boundaryOutflow(i, a, s, sides);
+      }
+  };
+  vof::TransportSettings settings = vofSettings_;
+  settings.compression = 0.0;
+  vof::advanceSubcycled(transport_, alpha_, vofEps_, {&vofFlux_[0], &vofFlux_[1], &vofFlux_[2]}, dt, sides, settings,
+                        fill, vofCourant_, afterSubstep);
+  for (int i = 0; i < n; ++i) {
+    phaseOutflow_[static_cast<std::size_t>(i)] += outflow[static_cast<std::size_t>(i)];
+    phaseOutflowRate_[static_cast<std::size_t>(i)] += outflow[static_cast<std::size_t>(i)] / dt;
+  }
+}
+
 void Solver::stepVof(double dt) {
   ScopedPhase timer(timers_, Phase::Fluid);
   const parallel::RankReductionScope ranks(*decomposition_);
@@ -482,7 +533,9 @@ void Solver::stepVof(double dt) {
     ScopedPhase pt(timers_, Phase::PressureSolve);
     project(dt, 1.0);
   }
-  updateMixture();  // (p = p* + rho g.x with the new p*)
+  // eps^{n-1}, eps^n, eps^{n+1} all 1: eps* is eps^{n+1} to the solver's tolerance already
+  if (!(uniform && epsOlderOnes_)) transportPhasesToProjection(dt);
+  updateMixture();  // (rho, mu of the corrected fractions; p = p* + rho g.x with the new p*)
   epsOlder_ = coupling_.voidFractionOld;
   epsOlderOnes_ = uniform;
   epsStep_ = coupling_.voidFraction;

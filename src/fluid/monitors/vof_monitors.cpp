@@ -34,11 +34,13 @@ struct PhaseKey {
   }
 };
 
-/// The void fraction with blocked cells set to 0. Blocked cells carry no flux, so what the fractions
+/// The void fraction the fractions hold their contents with (the eps^{n+1} of the last fluid step:
+/// in a coupled run the coupler has already moved the coupling fields on by one step when the
+/// monitors sample), with blocked cells set to 0. Blocked cells carry no flux, so what the fractions
 /// hold there is no fluid of the run; a smoothed void fraction (coupling.smoothing_length) reaches
 /// into them and would change a phase's mass there without any flux.
 Field openVoidFraction(const Solver& f) {
-  Field eps = f.couplingFields().voidFraction;
+  Field eps = f.phaseVoidFraction();
   const auto& n = eps.grid().cells;
   for (int z = 0; z < n[2]; ++z)
     for (int y = 0; y < n[1]; ++y)
