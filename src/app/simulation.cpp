@@ -554,6 +554,7 @@ void Simulation::advance() {
   const int substeps = settings_.demStepsPerCouplingStep;
   for (int s = 0; s < substeps; ++s) {
     if (everySubstep) forcesOnParticles(fieldsInTime_.at(fluidNow, (s + 1.0) / substeps, settings_.demStep));
+    if (resolved_) resolved_->lubricate(dem_->particles(), settings_.demStep, dem_->wallPrimitives());
     dem_->step(settings_.demStep);
   }
   if (coupler_) {

@@ -5,9 +5,15 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <numbers>
 #include <unordered_map>
 
+#include "io/stl_reader.hpp"
 #include "parallel/exchange.hpp"
+#include "resolved/mesh_body.hpp"
 
 namespace gf::resolved {
 
@@ -47,37 +53,113 @@ FictitiousDomain::FictitiousDomain(Params& root, fluid::Solver& fluid, dem::Part
        "condition is not exact near the surface: the body acts smaller than it is; docs/resolved.md)",
        Range::between(-1.0, 1.0)},
       kDefaultRadiusOffset);
+  {
+    Params lub = section.section(
+        {"lubrication", "-",
+         "short-range lubrication correction of the particles' normal approach to each other, to fixed spheres and "
+         "to the DEM's walls: the squeeze-film force the grid does not resolve (docs/resolved.md sec. 4)"});
+    lubrication_.enabled = lub.boolean({"enabled", "-", "add the lubrication correction"}, false);
+    lubrication_.range = lub.real({"range", "-",
+                                   "surface gap below which it acts, over the smaller diameter of the pair (the "
+                                   "resolved part: about one cell, 0.05 to 0.125 at 8 cells per diameter)",
+                                   Range::positive()},
+                                  LubricationSettings{}.range);
+    lubrication_.minGap = lub.real({"min_gap", "-",
+                                    "gap over the same diameter below which the correction stays at its value there "
+                                    "(roughness; the DEM contact takes over at touch)",
+                                    Range::positive()},
+                                   LubricationSettings{}.minGap);
+    if (!lub.documenting() && lubrication_.minGap >= lubrication_.range)
+      lub.fail("min_gap", fmt::format("{} (range {})", lubrication_.minGap, lubrication_.range),
+               "a cut-off below resolved.lubrication.range");
+  }
   std::vector<Params> entries = section.list(
-      {"bodies", "-", "fixed bodies the fluid flows around (spheres; cylinders along z), optionally rotating"});
+      {"bodies", "-",
+       "fixed bodies the fluid flows around (spheres; cylinders along z; closed STL meshes), optionally rotating"});
   for (Params& b : entries) {
-    const std::string shape =
-        b.choice({"shape", "-", "sphere, or cylinder (axis parallel to z, spanning the domain: a 2D body)"},
-                 {"sphere", "cylinder"});
-    const Vec3 centre = b.vec3({"centre", "m", "centre (cylinder: a point of its axis)"});
-    const double radius = b.real({"radius", "m", "radius", Range::positive()});
-    const Vec3 omega = b.vec3(
-        {"angular_velocity", "rad/s", "prescribed angular velocity about the centre (a cylinder: z component only)"},
-        Vec3{});
+    const std::string shape = b.choice(
+        {"shape", "-",
+         "sphere; cylinder (axis parallel to z, spanning the domain: a 2D body); stl (a closed triangle mesh, fixed in "
+         "place)"},
+        {"sphere", "cylinder", "stl"});
+    const bool hasCentre = b.has("centre");
+    const Vec3 centre = b.vec3({"centre", "m",
+                                "centre, required for a sphere or cylinder (cylinder: a point of its axis; stl: the "
+                                "point its torque is taken about, default the centroid of its volume)"},
+                               Vec3{});
+    const double radius = b.real({"radius", "m", "radius, required for a sphere or cylinder", Range::nonNegative()}, 0.0);
+    const Vec3 omega = b.vec3({"angular_velocity", "rad/s",
+                               "prescribed angular velocity about the centre (a cylinder: z component only; stl: the "
+                               "velocity omega x r imposed on the mesh, which stays in place: a rotation only for a "
+                               "body of revolution about that axis)"},
+                              Vec3{});
+    const std::string file =
+        b.text({"file", "-", "stl: path of a closed ASCII or binary STL mesh (relative to the case file)"}, "");
+    const double scale =
+        b.real({"scale", "-", "stl: factor applied to the coordinates (e.g. 0.001 for mm)", Range::positive()}, 1.0);
+    const Vec3 offset = b.vec3({"offset", "m", "stl: translation applied after scaling"}, Vec3{});
+    const long long samples = b.integer(
+        {"samples", "-",
+         "stl: sub-cell samples per cell along each axis (even) from which each cell's solid fraction is counted",
+         Range::between(2, 64)},
+        8);
+    const double referenceArea = b.real(
+        {"reference_area", "m^2",
+         "area A of the force coefficients of the monitor resolved_body_forces; 0: pi R^2 (sphere), 2 R L_z "
+         "(cylinder), pi r^2 with r the radius of the sphere of the mesh's volume (stl)",
+         Range::nonNegative()},
+        0.0);
     if (b.documenting()) continue;
     FixedBody f;
-    f.body.shape = shape == "sphere" ? Shape::Sphere : Shape::Cylinder;
+    f.body.shape = shape == "sphere" ? Shape::Sphere : (shape == "cylinder" ? Shape::Cylinder : Shape::Mesh);
     f.body.centre = centre;
     f.body.radius = radius;
     f.body.angularVelocity = f.body.shape == Shape::Cylinder ? Vec3{0.0, 0.0, omega.z} : omega;
-    if (f.body.shape == Shape::Sphere && fluid.twoD())
-      b.fail("shape", "a sphere on a 2D grid (fluid.cells with nz = 1)", "a cylinder, or a 3D grid");
-    const double n = cellsPerDiameter(radius, fluid.grid().spacing, f.body.shape == Shape::Cylinder);
+    if (f.body.shape != Shape::Cylinder && fluid.twoD())
+      b.fail("shape", fmt::format("a{} {} on a 2D grid (fluid.cells with nz = 1)", shape == "stl" ? "n" : "", shape),
+             "a cylinder, or a 3D grid");
+    if (f.body.shape == Shape::Mesh) {
+      if (samples % 2 != 0) b.fail("samples", std::to_string(samples), "an even number of samples per cell");
+      if (file.empty()) b.fail("file", "nothing", "the path of a closed STL mesh (shape: stl)");
+      std::filesystem::path path(file);
+      if (path.is_relative()) path = std::filesystem::path(b.fileName()).parent_path() / path;
+      std::vector<io::Triangle> triangles;
+      try {
+        triangles = io::readStl(path.string());
+      } catch (const Error& e) {
+        b.fail("file", "'" + file + "'", std::string("a readable STL file (") + e.what() + ")");
+      }
+      for (io::Triangle& t : triangles)
+        for (Vec3& v : t) v = scale * v + offset;
+      if (triangles.empty() || meshVolume(triangles) <= 0.0)
+        b.fail("file", fmt::format("'{}': {} triangles enclosing no volume", file, triangles.size()),
+               "a closed triangle mesh");
+      f.body.mesh = std::make_shared<const MeshBody>(std::move(triangles), fluid.grid(), static_cast<int>(samples));
+      f.body.radius = std::cbrt(3.0 * f.body.mesh->volume() / (4.0 * std::numbers::pi));
+      if (!hasCentre) f.body.centre = f.body.mesh->centroid();
+    } else {
+      if (!hasCentre) b.fail("centre", "nothing", fmt::format("the centre of the {}", shape));
+      if (!(radius > 0.0)) b.fail("radius", radius == 0.0 ? "nothing" : std::to_string(radius), "a positive radius");
+    }
+    // Resolution: a mesh by the diameter of the sphere of its volume.
+    const double n = cellsPerDiameter(f.body.radius, fluid.grid().spacing, f.body.shape == Shape::Cylinder);
     const double h = f.body.shape == Shape::Cylinder ? std::max(fluid.grid().spacing.x, fluid.grid().spacing.y)
                                                      : std::max({fluid.grid().spacing.x, fluid.grid().spacing.y,
                                                                  fluid.grid().spacing.z});
+    const char* sizeKey = f.body.shape == Shape::Mesh ? "scale" : "radius";
     if (n < kMinCells)
-      b.fail("radius", fmt::format("{} m: diameter {} m on cells of {} m is {:.3g} cells per diameter", radius,
-                                   2.0 * radius, h, n),
+      b.fail(sizeKey,
+             fmt::format("{}diameter {} m on cells of {} m is {:.3g} cells per diameter",
+                         f.body.shape == Shape::Mesh ? "volume-equivalent " : "", 2.0 * f.body.radius, h, n),
              fmt::format("at least {} cells per diameter (diameter >= {} m), better {}", kMinCells, kMinCells * h,
                          kWarnCells));
     if (n < kWarnCells)
       spdlog::warn("{}: diameter {} m on cells of {} m is {:.3g} cells per diameter, below {}: forces depend on the grid",
-                   b.path("radius"), 2.0 * radius, h, n, kWarnCells);
+                   b.path(sizeKey), 2.0 * f.body.radius, h, n, kWarnCells);
+    f.referenceArea = referenceArea > 0.0 ? referenceArea
+                      : f.body.shape == Shape::Cylinder
+                          ? 2.0 * f.body.radius * domain.size().z
+                          : std::numbers::pi * f.body.radius * f.body.radius;
     fixed_.push_back(f);
   }
   if (root.documenting()) return;
@@ -92,6 +174,8 @@ FictitiousDomain::FictitiousDomain(Params& root, fluid::Solver& fluid, dem::Part
   radiusOffset_ = radiusOffsetCells_ * (fluid.twoD() ? std::max(g.spacing.x, g.spacing.y)
                                                      : std::max({g.spacing.x, g.spacing.y, g.spacing.z}));
   depth_ = domain.size().z;
+  domainSize_ = domain.size();
+  viscosity_ = fluid.viscosity();
   distributed_ = fluid.decomposition().distributed();
 
   // The particles at start: resolved enough, and clear of the fixed bodies.
@@ -122,12 +206,17 @@ FictitiousDomain::FictitiousDomain(Params& root, fluid::Solver& fluid, dem::Part
       const Body& body = fixed_[b].body;
       std::vector<std::int64_t> ids;
       for (std::size_t i = 0; i < particles.size(); ++i) {
+        if (body.shape == Shape::Mesh) {  // the centre inside, or the surface nearer than the radius
+          const Vec3& x = particles.position[i];
+          if (body.mesh->contains(x) || body.mesh->distance(x) < particles.radius[i]) ids.push_back(particles.id[i]);
+          continue;
+        }
         Vec3 d = particles.position[i] - body.centre;
         if (body.shape == Shape::Cylinder) d.z = 0.0;
         if (norm(d) < particles.radius[i] + body.radius) ids.push_back(particles.id[i]);
       }
       if (!ids.empty())
-        entries[b].fail("centre",
+        entries[b].fail(body.shape == Shape::Mesh ? "file" : "centre",
                         fmt::format("particle(s) {} overlapping body {} at start", fmt::join(ids, ", "), b),
                         "particles clear of the fixed bodies at start");
     }
@@ -135,6 +224,7 @@ FictitiousDomain::FictitiousDomain(Params& root, fluid::Solver& fluid, dem::Part
   momentumColumn_ = particles.addColumn("resolved_fluid_momentum", Vec3{});
   angularColumn_ = particles.addColumn("resolved_fluid_angular_momentum", Vec3{});
   knownColumn_ = particles.addColumn("resolved_fluid_momentum_known", 0.0);
+  if (lubrication_.enabled) lubricationColumn_ = particles.addColumn("resolved_lubrication_force", Vec3{});
   particles.enableExternalForces();
   fluid.setPredictorHook([this](Field(&u)[3], double dt, double gamma0) { impose(u, dt, gamma0); });
 }
@@ -297,6 +387,80 @@ void FictitiousDomain::fluidStep(fluid::Solver& fluid, dem::ParticleSet& particl
     known[i] = 1.0;
   }
   if (!owned.empty()) particles.hasExternalTorques = true;
+  if (lubricationColumn_ != dem::ParticleSet::kNoColumn)  // (the external force holds no lubrication now)
+    for (Vec3& f : particles.vec3Columns[lubricationColumn_].values) f = Vec3{};
+}
+
+void FictitiousDomain::lubricate(dem::ParticleSet& particles, double dt, const std::vector<dem::WallPrimitive>& walls) {
+  if (lubricationColumn_ == dem::ParticleSet::kNoColumn || !particles.hasExternalForces) return;
+  std::vector<std::size_t> owned;
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    if (!particles.isGhost(i)) owned.push_back(i);
+  std::vector<Vec3> force(particles.size());
+  lubricationForces(particles, owned, dt, walls, force);
+  auto& applied = particles.vec3Columns[lubricationColumn_].values;
+  for (std::size_t i : owned) {
+    particles.externalForce[i] += force[i] - applied[i];
+    applied[i] = force[i];
+  }
+}
+
+void FictitiousDomain::lubricationForces(const dem::ParticleSet& p, const std::vector<std::size_t>& owned, double dt,
+                                         const std::vector<dem::WallPrimitive>& walls, std::vector<Vec3>& out) const {
+  const double mu = viscosity_;
+  // The gap h between two surfaces and the normal n (towards particle i); c and F of lubrication.hpp.
+  auto force = [&](double ri, double rj, double gap, double smallerDiameter, double vn, double reducedMass) {
+    const double c = lubricationCoefficient(mu, reducedRadius(ri, rj), gap, lubrication_.range * smallerDiameter,
+                                            lubrication_.minGap * smallerDiameter);
+    return lubricationForce(c, vn, reducedMass, dt);
+  };
+  // Particle pairs (all pairs: resolved particles are few, one rank), minimum image along periodic axes.
+  for (std::size_t a = 0; a < owned.size(); ++a) {
+    const std::size_t i = owned[a];
+    for (std::size_t b = a + 1; b < owned.size(); ++b) {
+      const std::size_t j = owned[b];
+      Vec3 d = p.position[i] - p.position[j];
+      for (int ax = 0; ax < 3; ++ax)
+        if (box_.periodic[ax]) d[ax] -= domainSize_[ax] * std::round(d[ax] / domainSize_[ax]);
+      const double dist = norm(d);
+      const double ri = p.radius[i], rj = p.radius[j];
+      const double smaller = 2.0 * std::min(ri, rj);
+      if (dist <= 0.0 || dist - ri - rj >= lubrication_.range * smaller) continue;
+      const Vec3 n = d / dist;
+      const double vn = dot(p.velocity[i] - p.velocity[j], n);
+      const double f = force(ri, rj, dist - ri - rj, smaller, vn, p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]));
+      out[i] += f * n;
+      out[j] -= f * n;
+    }
+  }
+  // Fixed spheres (at rest or rotating about their centre: no normal velocity of their surface).
+  for (const FixedBody& fb : fixed_) {
+    if (fb.body.shape != Shape::Sphere) continue;
+    for (std::size_t i : owned) {
+      const Vec3 d = p.position[i] - fb.body.centre;
+      const double dist = norm(d), ri = p.radius[i];
+      const double gap = dist - ri - fb.body.radius;
+      if (dist <= 0.0 || gap >= lubrication_.range * 2.0 * ri) continue;
+      const Vec3 n = d / dist;
+      out[i] += force(ri, fb.body.radius, gap, 2.0 * ri, dot(p.velocity[i], n), p.mass[i]) * n;
+    }
+  }
+  // DEM walls, at rest: per wall its nearest primitive (the triangles of a mesh share edges).
+  for (std::size_t i : owned) {
+    const double ri = p.radius[i];
+    std::unordered_map<std::int32_t, dem::WallDistance> nearest;
+    for (const dem::WallPrimitive& w : walls) {
+      if (!w.active) continue;
+      const dem::WallDistance wd = dem::distanceToPrimitive(w, p.position[i]);
+      if (wd.distance - ri >= lubrication_.range * 2.0 * ri) continue;
+      const auto it = nearest.find(w.wall);
+      if (it == nearest.end() || wd.distance < it->second.distance) nearest[w.wall] = wd;
+    }
+    for (const auto& [wall, wd] : nearest) {
+      const double vn = dot(p.velocity[i], wd.normal);
+      out[i] += force(ri, std::numeric_limits<double>::infinity(), wd.distance - ri, 2.0 * ri, vn, p.mass[i]) * wd.normal;
+    }
+  }
 }
 
 void FictitiousDomain::setPenalty(fluid::Solver& fluid, double diagonal) {
@@ -381,6 +545,7 @@ void FictitiousDomain::load(BinaryReader& in, dem::ParticleSet& particles) {
   momentumColumn_ = particles.addColumn("resolved_fluid_momentum", Vec3{});
   angularColumn_ = particles.addColumn("resolved_fluid_angular_momentum", Vec3{});
   knownColumn_ = particles.addColumn("resolved_fluid_momentum_known", 0.0);
+  if (lubrication_.enabled) lubricationColumn_ = particles.addColumn("resolved_lubrication_force", Vec3{});
   std::unordered_map<std::int64_t, std::size_t> where;
   for (std::size_t q = 0; q < ids.size(); ++q) where[ids[q]] = q;
   for (std::size_t i = 0; i < particles.size(); ++i) {

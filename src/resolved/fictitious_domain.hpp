@@ -15,8 +15,9 @@
 //      for the pressure less the hydrostatic part) (seed eqs. 2.15-2.25, lines 411-464);
 //   5. the DEM particles' external force and torque set to theirs: the DEM sub-steps then integrate
 //      their motion and collisions (time.coupling_interval DEM steps per fluid step).
-// Bodies: every DEM particle is a free resolved sphere; `resolved.bodies` adds fixed spheres and 2D
-// cylinders (axis z), optionally rotating at a prescribed angular velocity.
+// Bodies: every DEM particle is a free resolved sphere; `resolved.bodies` adds fixed spheres, 2D
+// cylinders (axis z) and closed STL meshes (mesh_body.hpp), optionally rotating at a prescribed
+// angular velocity.
 //
 // Under MPI each rank forces the cells and faces of its own box and the fixed bodies' sums are added
 // over the ranks (parallel::sumOverRanks); the app refuses resolved particles on several ranks for now
@@ -29,8 +30,10 @@
 #include "core/params.hpp"
 #include "core/serialize.hpp"
 #include "dem/particles.hpp"
+#include "dem/walls/wall_primitive.hpp"
 #include "fluid/solver.hpp"
 #include "resolved/forcing.hpp"
+#include "resolved/lubrication.hpp"
 
 namespace gf::resolved {
 
@@ -43,6 +46,7 @@ struct BodyLoad {
 /// A body of `resolved.bodies`: fixed in place, optionally rotating.
 struct FixedBody {
   Body body;
+  double referenceArea = 0.0;  // m^2, A of the force coefficients (resolved.bodies[].reference_area)
   Vec3 fluidMomentum, fluidAngularMomentum;  // the last step's sum phi u V (rigid-body correction)
   BodyLoad load;
 };
@@ -60,7 +64,15 @@ class FictitiousDomain {
   /// torque become theirs (held over the DEM sub-steps).
   void fluidStep(fluid::Solver& fluid, dem::ParticleSet& particles, double dt);
 
+  /// Before each DEM sub-step of length dt: the lubrication correction (resolved.lubrication; nothing
+  /// when off) at the particles' current gaps and velocities, against each other, the fixed spheres
+  /// and the DEM's walls (their current primitives, taken at rest), in place of the last sub-step's
+  /// in their external force. (Per sub-step: the gap closes by a large part of the range within one
+  /// fluid step, and the correction grows as 1 / h.)
+  void lubricate(dem::ParticleSet& particles, double dt, const std::vector<dem::WallPrimitive>& walls);
+
   const std::vector<FixedBody>& fixedBodies() const { return fixed_; }
+  const LubricationSettings& lubrication() const { return lubrication_; }
   /// Load of the particle with this id over the last step (zero if there is none on this rank).
   BodyLoad particleLoad(const dem::ParticleSet& particles, std::int64_t id) const;
   double fluidDensity() const { return rho_; }
@@ -72,6 +84,10 @@ class FictitiousDomain {
 
  private:
   void impose(Field (&u)[3], double dt, double gamma0);
+  /// The lubrication forces (lubrication.hpp) on the owned particles `owned` (pairs, fixed spheres,
+  /// walls), added to `force` (one per particle of the set).
+  void lubricationForces(const dem::ParticleSet& particles, const std::vector<std::size_t>& owned, double dt,
+                         const std::vector<dem::WallPrimitive>& walls, std::vector<Vec3>& force) const;
   /// Implicit forcing: K and the K-weighted body velocity of the covered cells (fluid coupling fields).
   void setPenalty(fluid::Solver& fluid, double diagonal);
   /// The momentum sums of every body for the current velocity (after the projection).
@@ -87,6 +103,9 @@ class FictitiousDomain {
   double rho_ = 1.0;
   double radiusOffsetCells_ = 0.0, radiusOffset_ = 0.0;  // resolved.radius_offset in cells, in m
   double depth_ = 1.0;
+  Vec3 domainSize_;  // m (the minimum image along periodic axes)
+  double viscosity_ = 0.0;
+  LubricationSettings lubrication_;
   Vec3 gravity_;
   bool distributed_ = false;
   bool implicit_ = true;                  // resolved.forcing
@@ -104,6 +123,8 @@ class FictitiousDomain {
   std::size_t momentumColumn_ = dem::ParticleSet::kNoColumn;
   std::size_t angularColumn_ = dem::ParticleSet::kNoColumn;
   std::size_t knownColumn_ = dem::ParticleSet::kNoColumn;
+  // The lubrication force in each particle's external force (lubricate), zeroed by fluidStep.
+  std::size_t lubricationColumn_ = dem::ParticleSet::kNoColumn;
   bool fixedKnown_ = false;
 };
 

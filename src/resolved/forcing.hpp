@@ -16,22 +16,26 @@
 // the forcing alone does not see.
 #include <array>
 #include <cstdint>
+#include <memory>
 
 #include "core/grid.hpp"
 #include "core/vec3.hpp"
+#include "resolved/mesh_body.hpp"
 #include "resolved/overlap.hpp"
 
 namespace gf::resolved {
 
-enum class Shape : std::uint8_t { Sphere, Cylinder };
+enum class Shape : std::uint8_t { Sphere, Cylinder, Mesh };
 
 /// A body as the forcing sees it for one step.
 struct Body {
   Shape shape = Shape::Sphere;
-  Vec3 centre;           // m; a cylinder: a point of its axis, which is parallel to z
-  double radius = 0.0;   // m
+  Vec3 centre;           // m; a cylinder: a point of its axis, which is parallel to z; a mesh: the point
+                         // its torque is taken about and its rotation's centre
+  double radius = 0.0;   // m; a mesh: the radius of the sphere of its volume
   Vec3 velocity;         // m/s, U
   Vec3 angularVelocity;  // rad/s, omega
+  std::shared_ptr<const MeshBody> mesh;  // Shape::Mesh: the closed triangle mesh and its fractions
 };
 
 /// Rigid-body velocity at x (seed eq. 2.5).
@@ -39,13 +43,33 @@ inline Vec3 rigidVelocity(const Body& b, const Vec3& x) { return b.velocity + cr
 
 /// Fraction of the box [lo, hi] covered by the body.
 inline double coveredFraction(const Body& b, const Vec3& lo, const Vec3& hi) {
-  return b.shape == Shape::Sphere ? sphereBoxFraction(b.centre, b.radius, lo, hi)
-                                  : cylinderBoxFraction(b.centre, b.radius, lo, hi);
+  switch (b.shape) {
+    case Shape::Sphere:
+      return sphereBoxFraction(b.centre, b.radius, lo, hi);
+    case Shape::Cylinder:
+      return cylinderBoxFraction(b.centre, b.radius, lo, hi);
+    case Shape::Mesh:
+      return b.mesh->fraction(lo, hi);
+  }
+  return 0.0;
+}
+
+/// Lower and upper corner of a box that holds the body (a cylinder: its disk in x-y, centre.z +-
+/// radius along z, which a 2D grid ignores).
+inline void bodyBounds(const Body& b, Vec3& lo, Vec3& hi) {
+  if (b.shape == Shape::Mesh) {
+    lo = b.mesh->lower();
+    hi = b.mesh->upper();
+    return;
+  }
+  lo = b.centre - Vec3{b.radius, b.radius, b.radius};
+  hi = b.centre + Vec3{b.radius, b.radius, b.radius};
 }
 
 /// Volume of the body inside a domain of extent `depth` along z (a cylinder), m^3.
 inline double bodyVolume(const Body& b, double depth) {
   constexpr double kPi = 3.14159265358979323846;
+  if (b.shape == Shape::Mesh) return b.mesh->volume();
   return b.shape == Shape::Sphere ? 4.0 / 3.0 * kPi * b.radius * b.radius * b.radius : kPi * b.radius * b.radius * depth;
 }
 
@@ -74,6 +98,8 @@ template <class Visit>
 void forEachCoveredFace(const Body& b, const FaceBox& box, Visit&& visit) {
   const CartesianGrid& g = box.grid;
   const Vec3 h = g.spacing;
+  Vec3 blo, bhi;
+  bodyBounds(b, blo, bhi);
   for (int c = 0; c < (box.twoD ? 2 : 3); ++c) {
     int lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
@@ -84,8 +110,8 @@ void forEachCoveredFace(const Body& b, const FaceBox& box, Visit&& visit) {
         continue;
       }
       const double shift = a == c ? 0.0 : 0.5;  // face point i at origin + (i + shift) h
-      lo[a] = std::max(0, static_cast<int>(std::floor((b.centre[a] - b.radius - g.origin[a]) / h[a] - shift)) - 1);
-      hi[a] = std::min(n - 1, static_cast<int>(std::ceil((b.centre[a] + b.radius - g.origin[a]) / h[a] - shift)) + 1);
+      lo[a] = std::max(0, static_cast<int>(std::floor((blo[a] - g.origin[a]) / h[a] - shift)) - 1);
+      hi[a] = std::min(n - 1, static_cast<int>(std::ceil((bhi[a] - g.origin[a]) / h[a] - shift)) + 1);
     }
     const int gi0 = box.offset[c], N = box.global[c];
     for (int k = lo[2]; k <= hi[2]; ++k)
@@ -94,13 +120,13 @@ void forEachCoveredFace(const Body& b, const FaceBox& box, Visit&& visit) {
           const int idx[3] = {i, j, k};
           const int gNormal = gi0 + idx[c];
           if (!box.periodic[c] && (gNormal == 0 || gNormal == N)) continue;  // boundary face: the BC's
-          Vec3 x, blo, bhi;
+          Vec3 x, clo, chi;
           for (int a = 0; a < 3; ++a) {
             x[a] = g.origin[a] + (idx[a] + (a == c ? 0.0 : 0.5)) * h[a];
-            blo[a] = x[a] - 0.5 * h[a];
-            bhi[a] = x[a] + 0.5 * h[a];
+            clo[a] = x[a] - 0.5 * h[a];
+            chi[a] = x[a] + 0.5 * h[a];
           }
-          const double phi = coveredFraction(b, blo, bhi);
+          const double phi = coveredFraction(b, clo, chi);
           if (phi <= 0.0) continue;
           const bool counted = idx[c] < g.cells[c];
           visit(c, i, j, k, x, phi, counted);
@@ -130,6 +156,8 @@ inline double predictorDiagonal(double rho, double mu, double gamma0, double dt,
 template <class Visit>
 void forEachCoveredCell(const Body& b, const FaceBox& box, Visit&& visit) {
   const CartesianGrid& g = box.grid;
+  Vec3 blo, bhi;
+  bodyBounds(b, blo, bhi);
   int lo[3], hi[3];
   for (int a = 0; a < 3; ++a) {
     if (box.twoD && a == 2) {
@@ -137,8 +165,8 @@ void forEachCoveredCell(const Body& b, const FaceBox& box, Visit&& visit) {
       hi[a] = g.cells[a] - 1;
       continue;
     }
-    lo[a] = std::max(0, static_cast<int>(std::floor((b.centre[a] - b.radius - g.origin[a]) / g.spacing[a])) - 1);
-    hi[a] = std::min(g.cells[a] - 1, static_cast<int>(std::floor((b.centre[a] + b.radius - g.origin[a]) / g.spacing[a])) + 1);
+    lo[a] = std::max(0, static_cast<int>(std::floor((blo[a] - g.origin[a]) / g.spacing[a])) - 1);
+    hi[a] = std::min(g.cells[a] - 1, static_cast<int>(std::floor((bhi[a] - g.origin[a]) / g.spacing[a])) + 1);
   }
   for (int k = lo[2]; k <= hi[2]; ++k)
     for (int j = lo[1]; j <= hi[1]; ++j)
@@ -195,6 +223,8 @@ inline FaceSums penaltyMomentumInside(const Body& b, const FaceBox& box, const s
     const double phi = coveredFraction(b, lower, lower + g.spacing);
     return phi > 0.0 ? penaltyCoefficient(phi, diagonal) : 0.0;
   };
+  Vec3 blo, bhi;
+  bodyBounds(b, blo, bhi);
   for (int c = 0; c < (box.twoD ? 2 : 3); ++c) {
     int lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
@@ -204,8 +234,8 @@ inline FaceSums penaltyMomentumInside(const Body& b, const FaceBox& box, const s
         hi[a] = n - 1;
         continue;
       }
-      lo[a] = std::max(0, static_cast<int>(std::floor((b.centre[a] - b.radius - g.origin[a]) / g.spacing[a])) - 1);
-      hi[a] = std::min(n - 1, static_cast<int>(std::floor((b.centre[a] + b.radius - g.origin[a]) / g.spacing[a])) + 2);
+      lo[a] = std::max(0, static_cast<int>(std::floor((blo[a] - g.origin[a]) / g.spacing[a])) - 1);
+      hi[a] = std::min(n - 1, static_cast<int>(std::floor((bhi[a] - g.origin[a]) / g.spacing[a])) + 2);
     }
     for (int k = lo[2]; k <= hi[2]; ++k)
       for (int j = lo[1]; j <= hi[1]; ++j)

@@ -1,8 +1,9 @@
 // Monitor 'resolved_body_forces': hydrodynamic force and torque on one resolved body (a fixed body
 // of resolved.bodies, or a particle by id), its drag and lift coefficients
 //   Cd = 2 F_flow / (rho U^2 A),  Cl = 2 F_lift / (rho U^2 A)
-// (A = pi R^2 for a sphere, 2 R x domain depth for a cylinder along z), and the Strouhal number
-// St = f D / U from the lift signal: f from the upward zero crossings of Cl (linear between samples),
+// (A = pi R^2 for a sphere, 2 R x domain depth for a cylinder along z, resolved.bodies[].reference_area
+// if set; an stl body: R of the sphere of its volume), and the Strouhal number St = f D / U (D = 2 R)
+// from the lift signal: f from the upward zero crossings of Cl (linear between samples),
 // over the last up to four periods; a crossing counts once Cl has been below -lift_threshold since
 // the previous one (the noise of a steady, symmetric wake does not count). St is 0 until two
 // crossings were seen. Sample every coupling step (interval: 0) or at least 20 times per period.
@@ -48,8 +49,7 @@ class BodyForcesMonitor : public Monitor {
     if (!st.resolved) return std::vector<double>(9, kNaN);
     const FictitiousDomain& fd = *st.resolved;
     BodyLoad load;
-    double radius = 0.0;
-    bool cylinder = false;
+    double radius = 0.0, area = 0.0;
     if (particle_ >= 0) {
       const dem::ParticleSet& p = monitoredParticles(st);
       for (std::size_t i = 0; i < p.size(); ++i)
@@ -58,14 +58,14 @@ class BodyForcesMonitor : public Monitor {
           if (p.hasExternalForces) load = {p.externalForce[i], p.externalTorque[i]};
         }
       if (radius == 0.0) return std::vector<double>(9, kNaN);
+      area = std::numbers::pi * radius * radius;
     } else {
       if (body_ >= static_cast<long long>(fd.fixedBodies().size())) return std::vector<double>(9, kNaN);
       const FixedBody& b = fd.fixedBodies()[static_cast<std::size_t>(body_)];
       load = b.load;
       radius = b.body.radius;
-      cylinder = b.body.shape == Shape::Cylinder;
+      area = b.referenceArea;
     }
-    const double area = cylinder ? 2.0 * radius * fd.depth() : std::numbers::pi * radius * radius;
     const double q = 0.5 * fd.fluidDensity() * velocity_ * velocity_ * area;
     const double cd = load.force[flow_] / q, cl = load.force[lift_] / q;
     // Strouhal number from the upward zero crossings of Cl.

@@ -36,6 +36,7 @@ TEST(ResolvedCases, EveryResolvedCaseRunsShortened) {
       {"resolved_cylinder_re100.yaml", "0.02"},
       {"resolved_fixed_sphere.yaml", "0.015"},
       {"resolved_rotating_sphere.yaml", "0.015"},
+      {"resolved_stl_cube.yaml", "0.015"},
       {"resolved_settling_sphere.yaml", "0.002"},
       {"resolved_two_spheres_dkt.yaml", "0.003"},
       {"resolved_eight_spheres.yaml", "0.0015"},
