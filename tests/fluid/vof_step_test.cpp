@@ -1,6 +1,7 @@
 // The fluid step with a VOF mixture (fluid.vof; src/fluid/vof_step.cpp, docs/vof.md): the
 // hydrostatic balance across a 1000:1 density jump, the variable-viscosity stress against
-// two-layer Couette flow, the conservation and bounds of a collapsing column, and the case-file
+// two-layer Couette flow, the conservation and bounds of a collapsing column, each phase's balance
+// of a draining tank with and without particles moving through the surface, and the case-file
 // errors.
 #include <gtest/gtest.h>
 
