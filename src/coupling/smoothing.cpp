@@ -1,5 +1,6 @@
 #include "coupling/smoothing.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -22,49 +23,57 @@ struct Compact {
 };
 
 /// y = (I - l^2 L) x with the 7-point Laplacian, zero flux at walls, wrap at periodic boundaries.
-/// `at(i, j, k)` reads x at a cell: interior, wrapped, or (decomposed grid) a ghost cell holding
-/// the neighbour rank's value.
-template <class At>
-void applyWith(const GridTopology& t, double l2, At&& at, std::vector<double>& y) {
-  const Compact c{t};
-  const auto& n = t.grid.cells;
-  forEachIndex(static_cast<std::int64_t>(n[2]) * n[1], n[0], [&](std::int64_t kj) {
-    const int k = static_cast<int>(kj / n[1]);
-    const int j = static_cast<int>(kj % n[1]);
-    for (int i = 0; i < n[0]; ++i) {
-      const int idx[3] = {i, j, k};
-      const double xc = at(i, j, k);
-      double lap = 0.0;
-      for (int a = 0; a < 3; ++a) {
-        if (n[a] == 1 && !t.shared[a][0] && !t.shared[a][1]) continue;
-        const double h2 = t.grid.spacing[a] * t.grid.spacing[a];
-        for (int s : {-1, 1}) {
-          int nb[3] = {i, j, k};
-          const int m = idx[a] + s;
-          if ((m < 0 && !t.open(a, 0)) || (m >= n[a] && !t.open(a, 1))) continue;  // wall: no flux
-          nb[a] = t.mapIndex(m, a);
-          lap += (at(nb[0], nb[1], nb[2]) - xc) / h2;
-        }
-      }
-      y[c.at(i, j, k)] = xc - l2 * lap;
-    }
-  });
-}
-
-/// applyWith on the compact vector x; on a decomposed grid through `work`, a field whose ghost
-/// cells across the cuts receive the neighbours' values first (one exchange per product).
+/// x is copied into `work`, a field with ghost cells that hold what each neighbour term reads: the
+/// neighbour rank's cells across a cut (decomposed grid), the other end's along an axis this box
+/// wraps itself, and the boundary cell's own value at a wall (its term (x_c - x_c) / h^2 is 0: no
+/// flux). The stencil then runs without a branch per neighbour, summing the terms in the order
+/// axis x, y, z and side -, + (an axis of one cell that no neighbour rank continues is left out).
 void apply(const GridTopology& t, double l2, const std::vector<double>& x, std::vector<double>& y, Field& work) {
   const Compact c{t};
-  if (!t.distributed()) {
-    applyWith(t, l2, [&](int i, int j, int k) { return x[c.at(i, j, k)]; }, y);
-    return;
-  }
   const auto& n = t.grid.cells;
-  for (int k = 0; k < n[2]; ++k)
-    for (int j = 0; j < n[1]; ++j)
-      for (int i = 0; i < n[0]; ++i) work(i, j, k) = x[c.at(i, j, k)];
-  parallel::fillGhosts(work, *t.decomposition);
-  applyWith(t, l2, [&](int i, int j, int k) { return work(i, j, k); }, y);
+  const auto lines = static_cast<std::int64_t>(n[2]) * n[1];
+  forEachIndex(lines, n[0], [&](std::int64_t kj) {
+    const int k = static_cast<int>(kj / n[1]), j = static_cast<int>(kj % n[1]);
+    std::copy_n(x.data() + c.at(0, j, k), n[0], &work(0, j, k));
+  });
+  if (t.distributed()) parallel::fillGhosts(work, *t.decomposition);
+  bool active[3];
+  for (int a = 0; a < 3; ++a) {
+    active[a] = !(n[a] == 1 && !t.shared[a][0] && !t.shared[a][1]);
+    if (!active[a]) continue;
+    // The face ghosts of the sides without a neighbour rank: the wrapped cell or the cell itself.
+    const int b = (a + 1) % 3, d = (a + 2) % 3;
+    for (int side = 0; side < 2; ++side) {
+      if (t.shared[a][side]) continue;
+      const int ghost = side == 0 ? -1 : n[a], source = t.periodic[a] ? (side == 0 ? n[a] - 1 : 0) : (side == 0 ? 0 : n[a] - 1);
+      for (int q = 0; q < n[d]; ++q)
+        for (int p = 0; p < n[b]; ++p) {
+          int g[3], s[3];
+          g[a] = ghost;
+          s[a] = source;
+          g[b] = s[b] = p;
+          g[d] = s[d] = q;
+          work(g[0], g[1], g[2]) = work(s[0], s[1], s[2]);
+        }
+    }
+  }
+  std::ptrdiff_t stride[3];
+  for (int a = 0; a < 3; ++a) stride[a] = work.stride(a);
+  forEachIndex(lines, n[0], [&](std::int64_t kj) {
+    const int k = static_cast<int>(kj / n[1]), j = static_cast<int>(kj % n[1]);
+    const double* w = &work(0, j, k);
+    double* out = y.data() + c.at(0, j, k);
+    for (int i = 0; i < n[0]; ++i) {
+      const double xc = w[i];
+      double lap = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        if (!active[a]) continue;
+        lap += (w[i - stride[a]] - xc) / (t.grid.spacing[a] * t.grid.spacing[a]);
+        lap += (w[i + stride[a]] - xc) / (t.grid.spacing[a] * t.grid.spacing[a]);
+      }
+      out[i] = xc - l2 * lap;
+    }
+  });
 }
 
 }  // namespace
@@ -78,8 +87,7 @@ SmoothingReport smoothField(const GridTopology& t, double l, Field& field) {
   // on a decomposed grid the dot products and norms below are sums over the ranks
   std::optional<parallel::RankReductionScope> ranks;
   if (t.distributed()) ranks.emplace(*t.decomposition);
-  Field work;  // (decomposed grid: x or p with the neighbours' ghost cells, apply)
-  if (t.distributed()) work = Field(t.grid);
+  Field work(t.grid);  // x or p with ghost cells (apply)
   std::vector<double> b(n), x(n), r(n), p(n), q(n);
   for (int k = 0; k < cells[2]; ++k)
     for (int j = 0; j < cells[1]; ++j)
