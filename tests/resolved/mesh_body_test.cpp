@@ -277,6 +277,38 @@ monitors:
   EXPECT_LT(std::abs(lift), 0.05 * fa);
 }
 
+TEST(ResolvedMeshBody, StlBodyOnFourRanksMatchesOneRank) {
+  // The cube case cut into 2 x 2 boxes through the cube (moved onto both cuts): each rank counts the
+  // samples of its own box and the cells around it, forces its own cells and sums its loads; the
+  // forces agree with one rank's far inside the tolerance (only the order of the sums differs).
+  if (gf::testing::runShell("command -v mpirun").exitCode != 0) GTEST_SKIP() << "no mpirun";
+  TempDir dir;
+  const std::string source = std::string(GRAINFLOW_SOURCE_DIR) + "/cases/";
+  std::string text = readAll(source + "resolved_stl_cube.yaml");
+  const std::string body = "file: meshes/cube.stl, offset: [0.3, 0.3, 0.3]";
+  ASSERT_NE(text.find(body), std::string::npos);
+  text.replace(text.find(body), body.size(), "file: " + source + "meshes/cube.stl, offset: [0.6, 0.3, 0.3]");
+  const std::string every = "interval: 0.05}";  // (the monitor: every step)
+  ASSERT_NE(text.find(every), std::string::npos);
+  text.replace(text.find(every), every.size(), "interval: 0}");
+  const std::string one = dir.write("one.yaml", text);
+  const std::string max = "  max: [1.2, 0.6, 0.6]";
+  ASSERT_NE(text.find(max), std::string::npos);
+  text.replace(text.find(max), max.size(), max + "\n  decomposition: [2, 2, 1]");
+  const std::string four = dir.write("four.yaml", text);
+  const auto r1 = grainflow("run " + one + " --quiet --threads 1 --end-time 0.02 --output " + dir.file("o1"));
+  ASSERT_EQ(r1.exitCode, 0) << r1.output;
+  const auto r4 = gf::testing::runShell(
+      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 OMPI_MCA_mpi_yield_when_idle=1 "
+      "mpirun --oversubscribe -n 4 " + std::string(GRAINFLOW_BINARY) + " run " + four +
+      " --quiet --threads 1 --end-time 0.02 --output " + dir.file("o4"));
+  ASSERT_EQ(r4.exitCode, 0) << r4.output;
+  const double f1 = meanAfter(dir.file("o1/cube_forces.csv"), 1, 0.0), f4 = meanAfter(dir.file("o4/cube_forces.csv"), 1, 0.0);
+  std::printf("cube on one rank %.9g N, on four %.9g N\n", f1, f4);
+  EXPECT_GT(f1, 0.0);
+  EXPECT_NEAR(f4, f1, 1e-7 * f1);
+}
+
 TEST(ResolvedMeshBody, ParticleOverlappingAnStlBodyIsRefusedWithItsId) {
   TempDir dir;
   writeAsciiStl(dir.file("block.stl"), boxMesh(Vec3{0.006, 0.006, 0.020}, Vec3{0.010, 0.010, 0.0235}));
