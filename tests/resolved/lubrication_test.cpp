@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../app/run_helper.hpp"
 #include "app/simulation.hpp"
 #include "core/params.hpp"
 
@@ -143,6 +144,18 @@ TEST(ResolvedLubrication, SphereSettlingOntoAWallApproachesItMoreSlowlyWithIt) {
   ASSERT_GE(touch, 0) << "without the correction the sphere did not reach the wall";
   EXPECT_GT(on[touch], 0.01);
   EXPECT_GT(on.back(), 0.0);
+}
+
+TEST(ResolvedLubrication, CutOffAtOrAboveTheRangeIsRefused) {
+  gf::testing::TempDir dir;
+  std::string text = wallApproachCase(true);
+  const std::string from = "range: 0.1, min_gap: 0.001";
+  ASSERT_NE(text.find(from), std::string::npos);
+  text.replace(text.find(from), from.size(), "range: 0.05, min_gap: 0.05");
+  const auto r = gf::testing::grainflow("check " + dir.write("lubrication.yaml", text));
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("resolved.lubrication.min_gap"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("a cut-off below resolved.lubrication.range"), std::string::npos) << r.output;
 }
 
 }  // namespace
