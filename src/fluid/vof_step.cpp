@@ -48,6 +48,22 @@
 
 namespace gf::fluid {
 
+namespace {
+/// The face fluxes eps_f u_f of the velocity component u (faces of axis a; eps_f the mean of the
+/// cells on either side, E laid out as `cells`) into phi, or (difference) minus what phi held.
+void faceFluxes(const Field& u, const double* E, const Field& cells, int a, Field& phi, bool difference) {
+  const auto& pts = u.points();
+  const std::ptrdiff_t se = cells.stride(a);
+  for (int k = 0; k < pts[2]; ++k)
+    for (int j = 0; j < pts[1]; ++j)
+      for (int i = 0; i < pts[0]; ++i) {
+        const std::size_t cc = cells.index(i, j, k);
+        const double flux = 0.5 * (E[cc] + E[cc - se]) * u(i, j, k);
+        phi(i, j, k) = difference ? flux - phi(i, j, k) : flux;
+      }
+}
+}  // namespace
+
 void Solver::readVof(Params& fluid) {
   if (!fluid.documenting() && !fluid.has("vof")) {
     for (int s = 0; s < 6; ++s)
@@ -340,16 +356,7 @@ void Solver::transportPhases(double dt) {
   for (int a = 0; a < 3; ++a) {
     Field& phi = vofFlux_[a];
     std::fill(phi.data().begin(), phi.data().end(), 0.0);
-    if (a >= dims) continue;
-    const Field& u = u_[a];
-    const auto& pts = u.points();
-    const std::ptrdiff_t se = p_.stride(a);
-    for (int k = 0; k < pts[2]; ++k)
-      for (int j = 0; j < pts[1]; ++j)
-        for (int i = 0; i < pts[0]; ++i) {
-          const std::size_t cc = p_.index(i, j, k);
-          phi(i, j, k) = 0.5 * (E[cc] + E[cc - se]) * u(i, j, k);
-        }
+    if (a < dims) faceFluxes(u_[a], E, p_, a, phi, false);
   }
   // Inlet faces: the flux of the last projection, which took the inlet velocity at t^n. This
   // step's ghost fill has already set the faces to t^{n+1}'s (a ramp), and to U / eps_f with the
@@ -452,18 +459,7 @@ void Solver::transportPhasesToProjection(double dt) {
   // correction and the limiter as in the step, so the bounds hold.
   const int dims = twoD_ ? 2 : 3;
   const double* E = coupling_.voidFraction.data().data();
-  for (int a = 0; a < dims; ++a) {
-    Field& phi = vofFlux_[a];  // phi^n on entry, dphi on exit
-    const Field& u = u_[a];
-    const auto& pts = u.points();
-    const std::ptrdiff_t se = p_.stride(a);
-    for (int k = 0; k < pts[2]; ++k)
-      for (int j = 0; j < pts[1]; ++j)
-        for (int i = 0; i < pts[0]; ++i) {
-          const std::size_t cc = p_.index(i, j, k);
-          phi(i, j, k) = 0.5 * (E[cc] + E[cc - se]) * u(i, j, k) - phi(i, j, k);
-        }
-  }
+  for (int a = 0; a < dims; ++a) faceFluxes(u_[a], E, p_, a, vofFlux_[a], true);  // phi^n in, dphi out
   vofEps_.data() = transport_.transportedVoidFraction().data();  // eps* (interior; ghosts below)
   const vof::Sides sides = vofSides();
   const vof::GhostFill fill =
