@@ -14,6 +14,7 @@
 
 #include "../app/run_helper.hpp"
 #include "app/simulation.hpp"
+#include "core/parallel.hpp"
 #include "core/params.hpp"
 
 namespace gf::resolved {
@@ -107,6 +108,8 @@ resolved:
 
 /// Gap over d after each fluid step.
 std::vector<double> wallApproach(bool lubrication, int steps) {
+  const int threads = threadCount();  // (one thread, as the command line's --threads 1)
+  setThreadCount(1);
   Params root = Params::loadString(wallApproachCase(lubrication), "resolved_wall_approach.yaml");
   app::RunOptions options;
   options.threads = 1;
@@ -118,6 +121,7 @@ std::vector<double> wallApproach(bool lubrication, int steps) {
     const dem::ParticleSet& p = sim.dem().particles();
     gaps.push_back((p.position[0].z - p.radius[0]) / (2.0 * p.radius[0]));
   }
+  setThreadCount(threads);
   return gaps;
 }
 

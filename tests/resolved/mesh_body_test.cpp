@@ -18,6 +18,7 @@
 
 #include "../app/run_helper.hpp"
 #include "app/simulation.hpp"
+#include "core/parallel.hpp"
 #include "core/params.hpp"
 #include "resolved/forcing.hpp"
 #include "resolved/overlap.hpp"
@@ -335,6 +336,8 @@ resolved:
   bodies:
     - {shape: stl, file: )" + stl + R"(}
 )";
+  const int threads = threadCount();  // (one thread, as the command line's --threads 1)
+  setThreadCount(1);
   Params root = Params::loadString(text, dir.file("block.yaml"));
   app::RunOptions options;
   options.threads = 1;
@@ -346,6 +349,7 @@ resolved:
     const dem::ParticleSet& p = sim.dem().particles();
     gaps.push_back((p.position[0].z - p.radius[0] - 0.0015) / (2.0 * p.radius[0]));
   }
+  setThreadCount(threads);
   return gaps;
 }
 
