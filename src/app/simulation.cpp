@@ -197,7 +197,8 @@ Simulation::Simulation(Params& root, const std::string& caseFile, const RunOptio
       root.section({"domain"}).fail("decomposition",
                                     fmt::format("{} ranks for a resolved case with particles", decomposition_.ranks()),
                                     "one rank (run without mpirun): resolved particles run on one rank for now");
-    resolved_ = std::make_unique<resolved::FictitiousDomain>(root, *fluid_, dem_->particles(), domain_, settings_.gravity);
+    resolved_ = std::make_unique<resolved::FictitiousDomain>(root, *fluid_, dem_->particles(), domain_, settings_.gravity,
+                                                             &dem_->contactTable());
   }
 
   for (Params& m : root.list({"monitors", "-", "quantities written as CSV time series (one file per monitor)"})) {
@@ -554,7 +555,7 @@ void Simulation::advance() {
   const int substeps = settings_.demStepsPerCouplingStep;
   for (int s = 0; s < substeps; ++s) {
     if (everySubstep) forcesOnParticles(fieldsInTime_.at(fluidNow, (s + 1.0) / substeps, settings_.demStep));
-    if (resolved_) resolved_->lubricate(dem_->particles(), settings_.demStep, dem_->wallPrimitives());
+    if (resolved_) resolved_->beforeDemStep(dem_->particles(), settings_.demStep, dem_->wallPrimitives());
     dem_->step(settings_.demStep);
   }
   if (coupler_) {

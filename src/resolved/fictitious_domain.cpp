@@ -11,6 +11,7 @@
 #include <numbers>
 #include <unordered_map>
 
+#include "dem/contact_kernel.hpp"
 #include "io/stl_reader.hpp"
 #include "parallel/exchange.hpp"
 #include "resolved/mesh_body.hpp"
@@ -29,8 +30,8 @@ constexpr double kDefaultRadiusOffset = 0.0;
 }  // namespace
 
 FictitiousDomain::FictitiousDomain(Params& root, fluid::Solver& fluid, dem::ParticleSet& particles,
-                                   const Domain& domain, const Vec3& gravity)
-    : gravity_(gravity) {
+                                   const Domain& domain, const Vec3& gravity, const dem::ContactTable* contacts)
+    : gravity_(gravity), contacts_(contacts) {
   Params section = root.section(
       {"resolved", "-",
        "resolved CFD-DEM (fictitious domain, docs/resolved.md): every particle is a resolved sphere moved by the "
@@ -103,6 +104,14 @@ FictitiousDomain::FictitiousDomain(Params& root, fluid::Solver& fluid, dem::Part
          "stl: sub-cell samples per cell along each axis (even) from which each cell's solid fraction is counted",
          Range::between(2, 64)},
         8);
+    // (the key is read for every shape, so that it is documented; an stl body takes its contacts
+    // from a DEM stl wall of the same file, docs/resolved.md)
+    const int material =
+        contacts ? contacts->readMaterial(b, {"material", "-",
+                                              "material of the body's contacts with the particles through the DEM's "
+                                              "contact law (sphere, cylinder; 'rigid': infinitely stiff, the default)"},
+                                          dem::kRigidMaterial)
+                 : -1;
     const double referenceArea = b.real(
         {"reference_area", "m^2",
          "area A of the force coefficients of the monitor resolved_body_forces; 0: pi R^2 (sphere), 2 R L_z "
@@ -160,6 +169,8 @@ FictitiousDomain::FictitiousDomain(Params& root, fluid::Solver& fluid, dem::Part
                       : f.body.shape == Shape::Cylinder
                           ? 2.0 * f.body.radius * domain.size().z
                           : std::numbers::pi * f.body.radius * f.body.radius;
+    if (f.body.shape != Shape::Mesh) f.material = material;
+    bodyContacts_ = bodyContacts_ || f.material >= 0;
     fixed_.push_back(f);
   }
   if (root.documenting()) return;
@@ -224,7 +235,7 @@ FictitiousDomain::FictitiousDomain(Params& root, fluid::Solver& fluid, dem::Part
   momentumColumn_ = particles.addColumn("resolved_fluid_momentum", Vec3{});
   angularColumn_ = particles.addColumn("resolved_fluid_angular_momentum", Vec3{});
   knownColumn_ = particles.addColumn("resolved_fluid_momentum_known", 0.0);
-  if (lubrication_.enabled) lubricationColumn_ = particles.addColumn("resolved_lubrication_force", Vec3{});
+  addSubstepColumns(particles);
   particles.enableExternalForces();
   fluid.setPredictorHook([this](Field(&u)[3], double dt, double gamma0) { impose(u, dt, gamma0); });
 }
@@ -387,22 +398,81 @@ void FictitiousDomain::fluidStep(fluid::Solver& fluid, dem::ParticleSet& particl
     known[i] = 1.0;
   }
   if (!owned.empty()) particles.hasExternalTorques = true;
-  if (lubricationColumn_ != dem::ParticleSet::kNoColumn)  // (the external force holds no lubrication now)
-    for (Vec3& f : particles.vec3Columns[lubricationColumn_].values) f = Vec3{};
+  if (substepForceColumn_ != dem::ParticleSet::kNoColumn) {  // (the external force holds none of them now)
+    for (Vec3& f : particles.vec3Columns[substepForceColumn_].values) f = Vec3{};
+    for (Vec3& t : particles.vec3Columns[substepTorqueColumn_].values) t = Vec3{};
+  }
 }
 
-void FictitiousDomain::lubricate(dem::ParticleSet& particles, double dt, const std::vector<dem::WallPrimitive>& walls) {
-  if (lubricationColumn_ == dem::ParticleSet::kNoColumn || !particles.hasExternalForces) return;
+void FictitiousDomain::addSubstepColumns(dem::ParticleSet& particles) {
+  if (!lubrication_.enabled && !bodyContacts_) return;
+  substepForceColumn_ = particles.addColumn("resolved_substep_force", Vec3{});
+  substepTorqueColumn_ = particles.addColumn("resolved_substep_torque", Vec3{});
+  for (std::size_t b = 0; b < fixed_.size(); ++b) {
+    if (fixed_[b].material < 0) continue;
+    fixed_[b].historyColumn = particles.addColumn(fmt::format("resolved_body_{}_tangential_history", b), Vec3{});
+    fixed_[b].rollingColumn = particles.addColumn(fmt::format("resolved_body_{}_rolling_history", b), Vec3{});
+  }
+}
+
+void FictitiousDomain::beforeDemStep(dem::ParticleSet& particles, double dt,
+                                     const std::vector<dem::WallPrimitive>& walls) {
+  if (substepForceColumn_ == dem::ParticleSet::kNoColumn || !particles.hasExternalForces) return;
   std::vector<std::size_t> owned;
   for (std::size_t i = 0; i < particles.size(); ++i)
     if (!particles.isGhost(i)) owned.push_back(i);
-  std::vector<Vec3> force(particles.size());
-  lubricationForces(particles, owned, dt, walls, force);
-  auto& applied = particles.vec3Columns[lubricationColumn_].values;
+  std::vector<Vec3> force(particles.size()), torque(particles.size());
+  if (lubrication_.enabled) lubricationForces(particles, owned, dt, walls, force);
+  if (bodyContacts_) bodyContactForces(particles, owned, dt, force, torque);
+  auto& appliedForce = particles.vec3Columns[substepForceColumn_].values;
+  auto& appliedTorque = particles.vec3Columns[substepTorqueColumn_].values;
   for (std::size_t i : owned) {
-    particles.externalForce[i] += force[i] - applied[i];
-    applied[i] = force[i];
+    particles.externalForce[i] += force[i] - appliedForce[i];
+    particles.externalTorque[i] += torque[i] - appliedTorque[i];
+    appliedForce[i] = force[i];
+    appliedTorque[i] = torque[i];
   }
+  if (bodyContacts_) particles.hasExternalTorques = true;
+}
+
+void FictitiousDomain::bodyContactForces(dem::ParticleSet& p, const std::vector<std::size_t>& owned, double dt,
+                                         std::vector<Vec3>& force, std::vector<Vec3>& torque) {
+  const dem::ContactTable& table = *contacts_;
+  dem::dispatchLaws(table.normalLaw(), table.rollingLaw(), table.cohesionLaw(), [&]<dem::NormalLaw N, dem::RollingLaw R,
+                                                                                     dem::CohesionLaw C>() {
+    for (const FixedBody& fb : fixed_) {
+      if (fb.material < 0) continue;
+      const Body& body = fb.body;
+      auto& history = p.vec3Columns[fb.historyColumn].values;
+      auto& rolling = p.vec3Columns[fb.rollingColumn].values;
+      for (std::size_t i : owned) {
+        Vec3 d = p.position[i] - body.centre;
+        if (body.shape == Shape::Cylinder) d.z = 0.0;  // (axis along z)
+        const double dist = norm(d), ri = p.radius[i];
+        const double overlap = ri + body.radius - dist;
+        if (!(overlap > 0.0) || dist <= 0.0) {
+          history[i] = Vec3{};
+          rolling[i] = Vec3{};
+          continue;
+        }
+        // As a DEM wall contact (dem/wall_contact_forces.hpp): the body's surface point, moving with
+        // its rigid velocity; R* of the two curvatures (a cylinder: that of its cross-section).
+        dem::ContactGeometry g;
+        g.normal = d / dist;
+        g.overlap = overlap;
+        const Vec3 contactPoint = p.position[i] - (dist - body.radius) * g.normal;
+        g.relativeVelocity = p.velocity[i] - ri * cross(p.angularVelocity[i], g.normal) - rigidVelocity(body, contactPoint);
+        g.relativeAngularVelocity = p.angularVelocity[i] - body.angularVelocity;
+        g.effectiveRadius = reducedRadius(ri, body.radius);
+        g.effectiveMass = p.mass[i];
+        g.rollingInertia = 1.4 * p.mass[i] * ri * ri;
+        const dem::ContactResult c = dem::contactForce<N, R, C>(table.pair(p.type[i], fb.material), g, history[i],
+                                                               R == dem::RollingLaw::Epsd ? &rolling[i] : nullptr, dt);
+        force[i] += c.force;
+        torque[i] += c.rollingTorque - ri * cross(g.normal, c.tangential);
+      }
+    }
+  });
 }
 
 void FictitiousDomain::lubricationForces(const dem::ParticleSet& p, const std::vector<std::size_t>& owned, double dt,
@@ -545,7 +615,7 @@ void FictitiousDomain::load(BinaryReader& in, dem::ParticleSet& particles) {
   momentumColumn_ = particles.addColumn("resolved_fluid_momentum", Vec3{});
   angularColumn_ = particles.addColumn("resolved_fluid_angular_momentum", Vec3{});
   knownColumn_ = particles.addColumn("resolved_fluid_momentum_known", 0.0);
-  if (lubrication_.enabled) lubricationColumn_ = particles.addColumn("resolved_lubrication_force", Vec3{});
+  addSubstepColumns(particles);
   std::unordered_map<std::int64_t, std::size_t> where;
   for (std::size_t q = 0; q < ids.size(); ++q) where[ids[q]] = q;
   for (std::size_t i = 0; i < particles.size(); ++i) {

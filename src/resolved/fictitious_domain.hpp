@@ -29,6 +29,7 @@
 #include "core/domain.hpp"
 #include "core/params.hpp"
 #include "core/serialize.hpp"
+#include "dem/contact/contact_table.hpp"
 #include "dem/particles.hpp"
 #include "dem/walls/wall_primitive.hpp"
 #include "fluid/solver.hpp"
@@ -47,6 +48,9 @@ struct BodyLoad {
 struct FixedBody {
   Body body;
   double referenceArea = 0.0;  // m^2, A of the force coefficients (resolved.bodies[].reference_area)
+  int material = -1;           // index in the DEM's contact table (sphere, cylinder); -1: no contacts
+  std::size_t historyColumn = dem::ParticleSet::kNoColumn;  // the particles' tangential history with it
+  std::size_t rollingColumn = dem::ParticleSet::kNoColumn;  // and rolling history (EPSD)
   Vec3 fluidMomentum, fluidAngularMomentum;  // the last step's sum phi u V (rigid-body correction)
   BodyLoad load;
 };
@@ -56,20 +60,22 @@ class FictitiousDomain {
   /// Reads section `resolved`, checks the resolution (warning below resolved.warn_cells_per_diameter,
   /// error below resolved.min_cells_per_diameter) and that no particle overlaps a fixed body,
   /// installs the forcing hook on the fluid solver. Throws CaseError. In documentation mode it
-  /// only declares the keys.
+  /// only declares the keys. `contacts`: the DEM's contact table, for the contacts of the particles
+  /// with the fixed spheres and cylinders (none if null).
   FictitiousDomain(Params& root, fluid::Solver& fluid, dem::ParticleSet& particles, const Domain& domain,
-                   const Vec3& gravity);
+                   const Vec3& gravity, const dem::ContactTable* contacts = nullptr);
 
   /// One fluid step with the forcing, then every body's load; the particles' external force and
   /// torque become theirs (held over the DEM sub-steps).
   void fluidStep(fluid::Solver& fluid, dem::ParticleSet& particles, double dt);
 
-  /// Before each DEM sub-step of length dt: the lubrication correction (resolved.lubrication; nothing
-  /// when off) at the particles' current gaps and velocities, against each other, the fixed spheres
-  /// and the DEM's walls (their current primitives, taken at rest), in place of the last sub-step's
-  /// in their external force. (Per sub-step: the gap closes by a large part of the range within one
-  /// fluid step, and the correction grows as 1 / h.)
-  void lubricate(dem::ParticleSet& particles, double dt, const std::vector<dem::WallPrimitive>& walls);
+  /// Before each DEM sub-step of length dt, in place of the last sub-step's in the particles' external
+  /// force and torque: the lubrication correction (resolved.lubrication; nothing when off) at their
+  /// current gaps and velocities, against each other, the fixed spheres and the DEM's walls (their
+  /// current primitives, taken at rest); and the contact forces of the DEM's contact law with the
+  /// fixed spheres and cylinders. (Per sub-step: the gap closes by a large part of the range within
+  /// one fluid step, and the correction grows as 1 / h; a contact lasts a few dozen sub-steps.)
+  void beforeDemStep(dem::ParticleSet& particles, double dt, const std::vector<dem::WallPrimitive>& walls);
 
   const std::vector<FixedBody>& fixedBodies() const { return fixed_; }
   const LubricationSettings& lubrication() const { return lubrication_; }
@@ -88,6 +94,13 @@ class FictitiousDomain {
   /// walls), added to `force` (one per particle of the set).
   void lubricationForces(const dem::ParticleSet& particles, const std::vector<std::size_t>& owned, double dt,
                          const std::vector<dem::WallPrimitive>& walls, std::vector<Vec3>& force) const;
+  /// The contact forces and torques of the owned particles with the fixed spheres and cylinders (the
+  /// DEM's contact law, the body as a wall of its material moving with its rigid velocity), added to
+  /// `force` and `torque`; updates the tangential histories.
+  void bodyContactForces(dem::ParticleSet& particles, const std::vector<std::size_t>& owned, double dt,
+                         std::vector<Vec3>& force, std::vector<Vec3>& torque);
+  /// The particle columns of the sub-step forces and the contact histories (when needed).
+  void addSubstepColumns(dem::ParticleSet& particles);
   /// Implicit forcing: K and the K-weighted body velocity of the covered cells (fluid coupling fields).
   void setPenalty(fluid::Solver& fluid, double diagonal);
   /// The momentum sums of every body for the current velocity (after the projection).
@@ -123,8 +136,12 @@ class FictitiousDomain {
   std::size_t momentumColumn_ = dem::ParticleSet::kNoColumn;
   std::size_t angularColumn_ = dem::ParticleSet::kNoColumn;
   std::size_t knownColumn_ = dem::ParticleSet::kNoColumn;
-  // The lubrication force in each particle's external force (lubricate), zeroed by fluidStep.
-  std::size_t lubricationColumn_ = dem::ParticleSet::kNoColumn;
+  // The sub-step forces and torques in each particle's external force and torque (beforeDemStep),
+  // zeroed by fluidStep.
+  std::size_t substepForceColumn_ = dem::ParticleSet::kNoColumn;
+  std::size_t substepTorqueColumn_ = dem::ParticleSet::kNoColumn;
+  const dem::ContactTable* contacts_ = nullptr;
+  bool bodyContacts_ = false;  // a fixed body with contacts
   bool fixedKnown_ = false;
 };
 

@@ -14,7 +14,7 @@
 // acts). h_range and h_min are fractions of the smaller diameter of the pair (the particle's for a
 // wall).
 //
-// The force is computed before each DEM sub-step (FictitiousDomain::lubricate): within one fluid step
+// The force is computed before each DEM sub-step (FictitiousDomain::beforeDemStep): within one fluid step
 // the gap can close by much of the range, and the force grows as 1 / h. Over a sub-step dt it is the
 // mean of the exact solution of m dv_n/dt = -c v_n, F = -m v_n (1 - exp(-c dt / m)) / dt: -c v_n while
 // the film's time scale m / c is long against dt (0.7 ms at h_min for the two-sphere case, against
