@@ -823,7 +823,7 @@ void Solver::load(BinaryReader& in) {
     const vof::Sides sides = vofSides();
     std::vector<Field*> fields;
     for (Field& a : alpha_) fields.push_back(&a);
-    (decomposition_->distributed() ? vof::decomposedFill(*decomposition_, sides) : vof::singleBoxFill(sides))(fields);
+    vofGhostFill(sides)(fields);
     updateMixture();
   }
 }

@@ -233,6 +233,11 @@ class Solver {
   void transportPhasesToProjection(double dt);
   void updateMixture();
   vof::Sides vofSides() const;
+  /// The phase fractions' ghost fill for these sides (the neighbour ranks' cells on a decomposed grid).
+  vof::GhostFill vofGhostFill(const vof::Sides& sides) const;
+  /// outflow[i] += h x phase i's outflow rate through the open sides of the domain (m^3/s; inflow
+  /// negative) of the transport's last substep.
+  void addBoundaryOutflow(std::vector<double>& outflow, double h, const vof::Sides& sides) const;
   // projection.cpp
   void balanceOutflow(double dt);
   void project(double dt, double gamma0);

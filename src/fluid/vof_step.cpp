@@ -195,6 +195,22 @@ vof::Sides Solver::vofSides() const {
   return sides;
 }
 
+vof::GhostFill Solver::vofGhostFill(const vof::Sides& sides) const {
+  return decomposition_->distributed() ? vof::decomposedFill(*decomposition_, sides) : vof::singleBoxFill(sides);
+}
+
+void Solver::addBoundaryOutflow(std::vector<double>& outflow, double h, const vof::Sides& sides) const {
+  // (every rank the same sides in the same order: boundaryOutflow sums across the ranks)
+  const int dims = twoD_ ? 2 : 3;
+  for (int a = 0; a < dims; ++a)
+    for (int s = 0; s < 2; ++s) {
+      const BoundaryType t = bc_.domainSide(a, s);
+      if (!(isOutlet(t) || t == BoundaryType::Inlet)) continue;
+      for (std::size_t i = 0; i < outflow.size(); ++i)
+        outflow[i] += h * transport_.boundaryOutflow(static_cast<int>(i), a, s, sides);
+    }
+}
+
 void Solver::setPhases(const std::function<int(const Vec3&)>& phaseAt) {
   if (!vof_) throw std::logic_error("Solver::setPhases without fluid.vof");
   for (Field& a : alpha_) std::fill(a.data().begin(), a.data().end(), 0.0);
@@ -207,7 +223,7 @@ void Solver::setPhases(const std::function<int(const Vec3&)>& phaseAt) {
   const vof::Sides sides = vofSides();
   std::vector<Field*> fields;
   for (Field& a : alpha_) fields.push_back(&a);
-  (decomposition_->distributed() ? vof::decomposedFill(*decomposition_, sides) : vof::singleBoxFill(sides))(fields);
+  vofGhostFill(sides)(fields);
   updateMixture();
 }
 
@@ -388,8 +404,7 @@ void Solver::transportPhases(double dt) {
     }
   vofEps_.data() = coupling_.voidFractionOld.data();
   const vof::Sides sides = vofSides();
-  const vof::GhostFill fill =
-      decomposition_->distributed() ? vof::decomposedFill(*decomposition_, sides) : vof::singleBoxFill(sides);
+  const vof::GhostFill fill = vofGhostFill(sides);
   fill({&vofEps_});
   const int n = phaseCount();
   std::vector<double> outflow(static_cast<std::size_t>(n), 0.0);
@@ -408,14 +423,7 @@ void Solver::transportPhases(double dt) {
             M.data()[q] += (h / dt) * sum;
           }
     }
-    // (every rank the same sides in the same order: boundaryOutflow sums across the ranks)
-    for (int a = 0; a < dims; ++a)
-      for (int s = 0; s < 2; ++s) {
-        const BoundaryType t = bc_.domainSide(a, s);
-        if (!(isOutlet(t) || t == BoundaryType::Inlet)) continue;
-        for (int i = 0; i < n; ++i)
-          outflow[static_cast<std::size_t>(i)] += h * transport_.boundaryOutflow(i, a, s, sides);
-      }
+    addBoundaryOutflow(outflow, h, sides);
   };
   vofSubsteps_ = vof::advanceSubcycled(transport_, alpha_, vofEps_, {&vofFlux_[0], &vofFlux_[1], &vofFlux_[2]}, dt,
                                        sides, vofSettings_, fill, vofCourant_, afterSubstep);
@@ -462,20 +470,11 @@ void Solver::transportPhasesToProjection(double dt) {
   for (int a = 0; a < dims; ++a) faceFluxes(u_[a], E, p_, a, vofFlux_[a], true);  // phi^n in, dphi out
   vofEps_.data() = transport_.transportedVoidFraction().data();  // eps* (interior; ghosts below)
   const vof::Sides sides = vofSides();
-  const vof::GhostFill fill =
-      decomposition_->distributed() ? vof::decomposedFill(*decomposition_, sides) : vof::singleBoxFill(sides);
+  const vof::GhostFill fill = vofGhostFill(sides);
   fill({&vofEps_});
   const int n = phaseCount();
   std::vector<double> outflow(static_cast<std::size_t>(n), 0.0);
-  auto afterSubstep = [&](double h) {
-    for (int a = 0; a < dims; ++a)
-      for (int s = 0; s < 2; ++s) {
-        const BoundaryType t = bc_.domainSide(a, s);
-        if (!(isOutlet(t) || t == BoundaryType::Inlet)) continue;
-        for (int i = 0; i < n; ++i)
-          outflow[static_cast<std::size_t>(i)] += h * transport_.boundaryOutflow(i, a, s, sides);
-      }
-  };
+  auto afterSubstep = [&](double h) { addBoundaryOutflow(outflow, h, sides); };
   vof::TransportSettings settings = vofSettings_;
   settings.compression = 0.0;
   vof::advanceSubcycled(transport_, alpha_, vofEps_, {&vofFlux_[0], &vofFlux_[1], &vofFlux_[2]}, dt, sides, settings,
@@ -530,7 +529,18 @@ void Solver::stepVof(double dt) {
     project(dt, 1.0);
   }
   // eps^{n-1}, eps^n, eps^{n+1} all 1: eps* is eps^{n+1} to the solver's tolerance already
-  if (!(uniform && epsOlderOnes_)) transportPhasesToProjection(dt);
+  // (eps^{n-1} read from its field, not from a flag: a run restarted from a checkpoint decides as
+  // the uninterrupted one did)
+  bool olderOnes = true;
+  for (int k = 0; k < grid_.cells[2] && olderOnes; ++k)
+    for (int j = 0; j < grid_.cells[1] && olderOnes; ++j)
+      for (int i = 0; i < grid_.cells[0]; ++i)
+        if (epsOlder_(i, j, k) != 1.0) {
+          olderOnes = false;
+          break;
+        }
+  if (decomposition_->distributed()) olderOnes = maxAcrossRanks(olderOnes ? 0.0 : 1.0) == 0.0;
+  if (!(uniform && olderOnes)) transportPhasesToProjection(dt);
   updateMixture();  // (rho, mu of the corrected fractions; p = p* + rho g.x with the new p*)
   epsOlder_ = coupling_.voidFractionOld;
   epsOlderOnes_ = uniform;
