@@ -36,6 +36,14 @@ inline CommandResult grainflow(const std::string& arguments) {
   return runShell(std::string(GRAINFLOW_BINARY) + " " + arguments);
 }
 
+/// grainflow under `mpirun -n ranks` (root-safe, one OpenMP thread per rank, ranks that yield when idle:
+/// more ranks than cores).
+inline CommandResult grainflowOnRanks(int ranks, const std::string& arguments) {
+  return runShell(
+      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 OMPI_MCA_mpi_yield_when_idle=1 "
+      "mpirun --oversubscribe -n " + std::to_string(ranks) + " " + std::string(GRAINFLOW_BINARY) + " " + arguments);
+}
+
 /// A fresh empty directory under the system temp dir, removed by the destructor.
 class TempDir {
  public:

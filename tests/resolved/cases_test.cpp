@@ -121,10 +121,7 @@ TEST(ResolvedCases, FixedBodyOnFourRanksMatchesOneRank) {
   const std::string four = dir.write("four.yaml", text);
   const auto r1 = grainflow("run " + one + " --quiet --threads 1 --end-time 0.02 --output " + dir.file("o1"));
   ASSERT_EQ(r1.exitCode, 0) << r1.output;
-  const auto r4 = gf::testing::runShell(
-      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 OMPI_MCA_mpi_yield_when_idle=1 "
-      "mpirun --oversubscribe -n 4 " + std::string(GRAINFLOW_BINARY) + " run " + four +
-      " --quiet --threads 1 --end-time 0.02 --output " + dir.file("o4"));
+  const auto r4 = gf::testing::grainflowOnRanks(4, "run " + four + " --quiet --threads 1 --end-time 0.02 --output " + dir.file("o4"));
   ASSERT_EQ(r4.exitCode, 0) << r4.output;
   const std::vector<double> a = lastRow(dir.file("o1/cylinder_forces.csv")), b = lastRow(dir.file("o4/cylinder_forces.csv"));
   ASSERT_EQ(a.size(), b.size());
@@ -135,9 +132,7 @@ TEST(ResolvedCases, FixedBodyOnFourRanksMatchesOneRank) {
 
 TEST(ResolvedBadInput, ParticlesOnSeveralRanksAreRefused) {
   if (gf::testing::runShell("command -v mpirun").exitCode != 0) GTEST_SKIP() << "no mpirun";
-  const auto r = gf::testing::runShell(
-      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 mpirun --oversubscribe -n 2 " +
-      std::string(GRAINFLOW_BINARY) + " check " + source("cases/resolved_settling_sphere.yaml"));
+  const auto r = gf::testing::grainflowOnRanks(2, "check " + source("cases/resolved_settling_sphere.yaml"));
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("resolved particles run on one rank for now"), std::string::npos) << r.output;
 }

@@ -301,10 +301,7 @@ TEST(ResolvedMeshBody, StlBodyOnFourRanksMatchesOneRank) {
   const std::string four = dir.write("four.yaml", text);
   const auto r1 = grainflow("run " + one + " --quiet --threads 1 --end-time 0.02 --output " + dir.file("o1"));
   ASSERT_EQ(r1.exitCode, 0) << r1.output;
-  const auto r4 = gf::testing::runShell(
-      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 OMPI_MCA_mpi_yield_when_idle=1 "
-      "mpirun --oversubscribe -n 4 " + std::string(GRAINFLOW_BINARY) + " run " + four +
-      " --quiet --threads 1 --end-time 0.02 --output " + dir.file("o4"));
+  const auto r4 = gf::testing::grainflowOnRanks(4, "run " + four + " --quiet --threads 1 --end-time 0.02 --output " + dir.file("o4"));
   ASSERT_EQ(r4.exitCode, 0) << r4.output;
   const double f1 = meanAfter(dir.file("o1/cube_forces.csv"), 1, 0.0), f4 = meanAfter(dir.file("o4/cube_forces.csv"), 1, 0.0);
   std::printf("cube on one rank %.9g N, on four %.9g N\n", f1, f4);
