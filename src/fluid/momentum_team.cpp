@@ -273,10 +273,12 @@ bool Solver::predictMomentumTeam(double dt, double g0, double g1, double g2, dou
                         unknownLineStart_[c].data(), mu_, slab.lineBegin(pts), slab.lineEnd(pts),
                         teamPartial_[c][parity].data());
       }
-      std::vector<Field*> swept;
-      for (int c = 0; c < 3; ++c)
-        if (active[c]) swept.push_back(inYLocal[c] ? &u_[c] : &precY_[c]);
-      if (distributed) parallel::fillGhosts(swept, *decomposition_);
+      if (distributed) {  // (the neighbour ranks' ghosts before the boundary conditions, as a full fill)
+        std::vector<Field*> swept;
+        for (int c = 0; c < 3; ++c)
+          if (active[c]) swept.push_back(inYLocal[c] ? &u_[c] : &precY_[c]);
+        parallel::fillGhosts(swept, *decomposition_);
+      }
       for (int c = 0; c < 3; ++c) {
         if (!active[c]) continue;
         Field& y = inYLocal[c] ? u_[c] : precY_[c];

@@ -513,10 +513,7 @@ void Solver::stepVof(double dt) {
     if (decomposition_->distributed()) uniform = maxAcrossRanks(uniform ? 0.0 : 1.0) == 0.0;
   }
   uniformCoupling_ = uniform;
-  if (steps_ == 0) {
-    epsOlder_ = coupling_.voidFractionOld;
-    epsOlderOnes_ = uniform;
-  }
+  if (steps_ == 0) epsOlder_ = coupling_.voidFractionOld;
   stats_ = StepStatistics{};
   rhoOld_.data() = rhoCell_.data();
   transportPhases(dt);  // alpha^n -> alpha^{n+1} with the last projection's fluxes
@@ -531,19 +528,16 @@ void Solver::stepVof(double dt) {
   // eps^{n-1}, eps^n, eps^{n+1} all 1: eps* is eps^{n+1} to the solver's tolerance already
   // (eps^{n-1} read from its field, not from a flag: a run restarted from a checkpoint decides as
   // the uninterrupted one did)
-  bool olderOnes = true;
-  for (int k = 0; k < grid_.cells[2] && olderOnes; ++k)
-    for (int j = 0; j < grid_.cells[1] && olderOnes; ++j)
-      for (int i = 0; i < grid_.cells[0]; ++i)
-        if (epsOlder_(i, j, k) != 1.0) {
-          olderOnes = false;
-          break;
-        }
-  if (decomposition_->distributed()) olderOnes = maxAcrossRanks(olderOnes ? 0.0 : 1.0) == 0.0;
-  if (!(uniform && olderOnes)) transportPhasesToProjection(dt);
+  bool olderOnes = uniform;  // (only asked where eps^n and eps^{n+1} are uniform; uniform is collective)
+  if (olderOnes) {
+    for (int k = 0; k < grid_.cells[2]; ++k)
+      for (int j = 0; j < grid_.cells[1]; ++j)
+        for (int i = 0; i < grid_.cells[0]; ++i) olderOnes = olderOnes && epsOlder_(i, j, k) == 1.0;
+    if (decomposition_->distributed()) olderOnes = maxAcrossRanks(olderOnes ? 0.0 : 1.0) == 0.0;
+  }
+  if (!olderOnes) transportPhasesToProjection(dt);
   updateMixture();  // (rho, mu of the corrected fractions; p = p* + rho g.x with the new p*)
   epsOlder_ = coupling_.voidFractionOld;
-  epsOlderOnes_ = uniform;
   epsStep_ = coupling_.voidFraction;
   epsStepOnes_ = uniform;
   finishStep(dt);
