@@ -5,8 +5,8 @@
 #include <optional>
 #include <vector>
 
+#include "core/parallel.hpp"
 #include "core/reduction.hpp"
-#include "coupling/loops.hpp"
 #include "parallel/halo.hpp"
 #include "parallel/reductions.hpp"
 
